@@ -1,0 +1,53 @@
+// The `acetate` command line. Subcommands and flags are binding: other tools call them.
+
+#include <CLI/CLI.hpp>
+
+#include "cli/render_command.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"Acetate: a headless Vulkan compositor for layered 2D scenes"};
+    app.require_subcommand(1);
+
+    acetate::RenderCommand render;
+    std::string floors_list;
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene to an image");
+    cmd->add_option("scene", render.scene, "Scene file (acetate-scene/1 JSON)")->required();
+    cmd->add_option("-o,--output", render.output, "Output image: .exr (half, premultiplied, "
+                                                  "linear) or .png (8-bit sRGB, straight alpha)")
+        ->required();
+    auto* floor = cmd->add_option("--floor", render.floor, "Active floor (default: the scene's)");
+    cmd->add_option("--floors", floors_list,
+                    "Active floors to render in turn in one process, e.g. 0,1,2,1; writes "
+                    "OUT with the floor index before the extension")
+        ->excludes(floor);
+    cmd->add_option("--view", render.view,
+                    "normal | floor-alpha | accum-alpha | floor-rgb | violations | isolation")
+        ->default_val("normal");
+    cmd->add_option("--format", render.format, "Render target format: rgba16f | rgba32f")
+        ->default_val("rgba16f");
+    cmd->add_option("--stats", render.stats, "Write load and per-frame statistics as JSON");
+
+    try {
+        app.parse(argc, argv);
+        if (!floors_list.empty()) {
+            size_t start = 0;
+            while (start <= floors_list.size()) {
+                const size_t comma = floors_list.find(',', start);
+                const std::string item = floors_list.substr(start, comma - start);
+                size_t used = 0;
+                const unsigned long value = std::stoul(item, &used);
+                if (used != item.size()) throw std::invalid_argument(item);
+                render.floors.push_back(uint32_t(value));
+                if (comma == std::string::npos) break;
+                start = comma + 1;
+            }
+        }
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const std::exception&) {
+        std::fprintf(stderr, "acetate: --floors: expected floor indices like 0,1,2,1, got \"%s\"\n",
+                     floors_list.c_str());
+        return 2;
+    }
+    return acetate::run_render(render);
+}

@@ -1,0 +1,30 @@
+#pragma once
+// `acetate render`: load one scene, render a sequence of active floors, write images and stats.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace acetate {
+
+struct RenderCommand {
+    std::filesystem::path scene;
+    std::filesystem::path output;                 // .exr or .png
+    std::optional<uint32_t> floor;                // --floor N
+    std::vector<uint32_t> floors;                 // --floors 0,1,2,1
+    std::string view = "normal";                  // --view
+    std::string format = "rgba16f";               // --format
+    std::optional<std::filesystem::path> stats;   // --stats FILE
+};
+
+// Runs the command; prints progress to stdout and one-line errors to stderr. Returns the exit
+// status: 0 on success, 1 on bad input or a failure of the environment.
+int run_render(const RenderCommand& command);
+
+// The file a frame of floor `floor` goes to: OUT itself for a single frame, else OUT with the
+// floor index before the extension (`out.floor1.png`).
+std::filesystem::path frame_output_path(const std::filesystem::path& output, uint32_t floor,
+                                        bool several);
+
+}  // namespace acetate

@@ -1,0 +1,112 @@
+#pragma once
+// Result<T>: how fallible host operations report failure caused by the environment or the
+// input (STYLE.md tier 3). Internal invariants use assert; contract violations use
+// ACETATE_CHECK (core/check.hpp).
+
+#include <vulkan/vulkan.h>
+
+#include <cassert>
+#include <string>
+#include <utility>
+#include <variant>
+
+namespace acetate {
+
+enum class ErrorCode {
+    InvalidInput,    // a scene file, field or argument is malformed
+    FileNotFound,    // a named file does not exist
+    ImageDecode,     // OpenImageIO could not read an image
+    ImageEncode,     // OpenImageIO could not write an image
+    Io,              // other file-system failure
+    VulkanInit,      // instance or device creation failed
+    NoDevice,        // no Vulkan device matches the request
+    DeviceLimit,     // the request exceeds what the device allows (e.g. image size)
+    OutOfMemory,     // a Vulkan allocation failed
+    ShaderCompile,   // glslang rejected a shader
+    VulkanCall,      // any other Vulkan call failed
+};
+
+const char* to_string(ErrorCode code);
+
+// One failure: what kind, the VkResult when Vulkan was involved, and a one-line message that
+// names the file, field or object at fault.
+struct Error {
+    ErrorCode code = ErrorCode::InvalidInput;
+    std::string message;
+    VkResult vk_result = VK_SUCCESS;
+};
+
+inline Error make_error(ErrorCode code, std::string message, VkResult vk = VK_SUCCESS) {
+    return Error{code, std::move(message), vk};
+}
+
+template <class T>
+class [[nodiscard]] Result {
+public:
+    Result(T value) : state_(std::move(value)) {}
+    Result(Error error) : state_(std::move(error)) {}
+
+    bool ok() const { return state_.index() == 0; }
+    explicit operator bool() const { return ok(); }
+
+    T& value() & {
+        assert(ok());
+        return std::get<0>(state_);
+    }
+    T&& value() && {
+        assert(ok());
+        return std::get<0>(std::move(state_));
+    }
+    const T& value() const& {
+        assert(ok());
+        return std::get<0>(state_);
+    }
+    const Error& error() const {
+        assert(!ok());
+        return std::get<1>(state_);
+    }
+    T* operator->() { return &value(); }
+    T& operator*() { return value(); }
+
+private:
+    std::variant<T, Error> state_;
+};
+
+template <>
+class [[nodiscard]] Result<void> {
+public:
+    Result() = default;
+    Result(Error error) : error_(std::move(error)), ok_(false) {}
+    bool ok() const { return ok_; }
+    explicit operator bool() const { return ok_; }
+    const Error& error() const {
+        assert(!ok_);
+        return error_;
+    }
+
+private:
+    Error error_;
+    bool ok_ = true;
+};
+
+}  // namespace acetate
+
+// Propagates an error from an expression returning Result<...>.
+#define ACETATE_TRY(expr)                               \
+    do {                                                \
+        auto acetate_try_result_ = (expr);              \
+        if (!acetate_try_result_.ok())                  \
+            return acetate_try_result_.error();         \
+    } while (0)
+
+// Checks a VkResult; on failure returns an Error naming the call.
+#define ACETATE_VK(call)                                                                   \
+    do {                                                                                   \
+        VkResult acetate_vk_result_ = (call);                                              \
+        if (acetate_vk_result_ != VK_SUCCESS)                                              \
+            return ::acetate::vk_error(#call, acetate_vk_result_);                         \
+    } while (0)
+
+namespace acetate {
+Error vk_error(const char* call, VkResult result);
+}

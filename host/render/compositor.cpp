@@ -1,0 +1,499 @@
+#include "render/compositor.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstring>
+
+#include "vulkan/vulkan_context.hpp"
+
+namespace acetate {
+namespace {
+
+constexpr VkImageUsageFlags kTargetUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                                           VK_IMAGE_USAGE_SAMPLED_BIT |
+                                           VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                           VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+VkRect2D to_vk(const PixelRect& r) {
+    return {{int32_t(r.x0), int32_t(r.y0)}, {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0)}};
+}
+
+VkRenderingAttachmentInfo color_attachment(VkImageView view, bool clear) {
+    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    a.imageView = view;
+    a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    a.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    return a;
+}
+
+ResourceCounters delta(const ResourceCounters& after, const ResourceCounters& before) {
+    return {after.images_loaded - before.images_loaded,
+            after.targets_allocated - before.targets_allocated,
+            after.shaders_compiled - before.shaders_compiled,
+            after.pipelines_created - before.pipelines_created};
+}
+
+}  // namespace
+
+Result<OutputView> parse_view(const std::string& name) {
+    for (int v = 0; v <= int(OutputView::Isolation); ++v)
+        if (name == to_string(OutputView(v))) return OutputView(v);
+    return make_error(ErrorCode::InvalidInput,
+                      fmt::format("--view: unknown view \"{}\"; expected normal, floor-alpha, "
+                                  "accum-alpha, floor-rgb, violations or isolation",
+                                  name));
+}
+
+const char* to_string(OutputView view) {
+    switch (view) {
+        case OutputView::Normal: return "normal";
+        case OutputView::FloorAlpha: return "floor-alpha";
+        case OutputView::AccumAlpha: return "accum-alpha";
+        case OutputView::FloorRgb: return "floor-rgb";
+        case OutputView::Violations: return "violations";
+        case OutputView::Isolation: return "isolation";
+    }
+    return "?";
+}
+
+bool view_reads_floor_target(OutputView view) {
+    return view == OutputView::FloorAlpha || view == OutputView::FloorRgb ||
+           view == OutputView::Violations;
+}
+
+std::array<float, 3> isolation_tint(uint32_t index) {
+    // Hues spaced by the golden angle so neighbouring floors never look alike.
+    const float hue = std::fmod(index * 0.381966f, 1.0f) * 6.0f;
+    const float x = 1.0f - std::fabs(std::fmod(hue, 2.0f) - 1.0f);
+    const int sector = int(hue);
+    const std::array<std::array<float, 3>, 6> rgb = {{{1, x, 0}, {x, 1, 0}, {0, 1, x},
+                                                      {0, x, 1}, {x, 0, 1}, {1, 0, x}}};
+    return rgb[size_t(sector % 6)];
+}
+
+Result<std::unique_ptr<Compositor>> Compositor::load(VulkanContext& context,
+                                                     const SceneDesc& scene,
+                                                     const CompositorOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    const ResourceCounters before = context.counters();
+    if (options.format != VK_FORMAT_R16G16B16A16_SFLOAT &&
+        options.format != VK_FORMAT_R32G32B32A32_SFLOAT)
+        return make_error(ErrorCode::InvalidInput, "--format: expected rgba16f or rgba32f");
+    const uint32_t max_dim = context.properties().limits.maxImageDimension2D;
+    if (scene.width > max_dim || scene.height > max_dim)
+        return make_error(ErrorCode::DeviceLimit,
+                          fmt::format("{}: canvas: {}x{} exceeds the largest image device \"{}\" "
+                                      "allows ({} per side)",
+                                      scene.file.string(), scene.width, scene.height,
+                                      context.device_name(), max_dim));
+    if (scene.floors.empty())
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: floors: at least one floor is needed", scene.file.string()));
+
+    std::unique_ptr<Compositor> out(new Compositor(context));
+    out->options_ = options;
+    out->scene_ = scene;
+    out->width_ = scene.width;
+    out->height_ = scene.height;
+
+    auto resources = SceneResources::load(context, scene, options.format, options.mask_kinds);
+    if (!resources) return resources.error();
+    out->resources_ = std::move(resources.value());
+    ACETATE_TRY(out->create_targets(scene));
+
+    std::vector<Stage> stages{Stage::Output};
+    if (options.plan.draw_direct) stages.push_back(Stage::TileToAccum);
+    if (out->floor_color_) {
+        stages.push_back(Stage::TileToTarget);
+        stages.push_back(Stage::Composite);
+        if (options.fill_uncovered) stages.push_back(Stage::FillUncovered);
+    }
+    auto pipelines = HostPipelines::create(context, options.format, stages);
+    if (!pipelines) return pipelines.error();
+    out->pipelines_ = std::move(pipelines.value());
+    ACETATE_TRY(out->warm_pipelines());
+
+    const ResourceCounters used = delta(context.counters(), before);
+    out->load_stats_ = {milliseconds_since(start), used.images_loaded, used.targets_allocated,
+                        used.shaders_compiled, used.pipelines_created};
+    return out;
+}
+
+Compositor::~Compositor() {
+    if (context_.device()) vkDeviceWaitIdle(context_.device());
+}
+
+bool Compositor::needs_floor_target() const {
+    bool any_effects = false;
+    for (const LoadedFloor& f : resources_->floors()) any_effects |= f.geometry.needs_target;
+    return any_effects || !options_.plan.draw_direct || view_reads_floor_target(options_.view) ||
+           options_.fill_uncovered.has_value();
+}
+
+Result<void> Compositor::create_targets(const SceneDesc& scene) {
+    const std::string where = scene.file.string() + ": canvas";
+    auto wrap = [&](Result<GpuImage> r) -> Result<GpuImage> {
+        if (!r) return make_error(r.error().code, where + ": " + r.error().message, r.error().vk_result);
+        return r;
+    };
+    auto accumulation = wrap(GpuImage::create(context_, "accumulation", width_, height_,
+                                              options_.format, kTargetUsage, true));
+    if (!accumulation) return accumulation.error();
+    accumulation_ = std::move(accumulation.value());
+    auto output = wrap(GpuImage::create(context_, "output", width_, height_, options_.format,
+                                        kTargetUsage, true));
+    if (!output) return output.error();
+    output_ = std::move(output.value());
+    if (needs_floor_target()) {
+        auto color = wrap(GpuImage::create(context_, "floor.color", width_, height_,
+                                           options_.format, kTargetUsage, true));
+        if (!color) return color.error();
+        floor_color_ = std::move(color.value());
+        auto stencil = wrap(GpuImage::create(context_, "floor.stencil", width_, height_,
+                                             context_.stencil_format(),
+                                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, true));
+        if (!stencil) return stencil.error();
+        floor_stencil_ = std::move(stencil.value());
+    }
+    auto violations = GpuBuffer::create(
+        context_, VkDeviceSize(sizeof(uint32_t) * std::max<size_t>(1, scene.floors.size())),
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!violations) return violations.error();
+    violations_ = std::move(violations.value());
+    return {};
+}
+
+// lavapipe compiles a pipeline's shaders at its first draw (30-100 ms each, DESIGN.md facts), so
+// every pipeline draws one pixel here and the first real frame does not stall.
+Result<void> Compositor::warm_pipelines() {
+    std::memset(violations_.mapped(), 0, violations_.size());
+    const GpuImage* any_tile = nullptr;
+    for (const LoadedFloor& f : resources_->floors())
+        if (!f.tiles.empty()) any_tile = f.tiles.front().texture;
+    const PixelRect pixel{0, 0, 1, 1};
+    const bool has_depth = context_.stencil_format() != VK_FORMAT_S8_UINT;
+    auto draw_one_pixel = [&](VkCommandBuffer cmd, Stage stage, GpuImage& target, bool stencil,
+                              VkImageView input) {
+        target.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+        VkRenderingAttachmentInfo color = color_attachment(target.view(), true);
+        VkRenderingAttachmentInfo stencil_info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = to_vk(pixel);
+        info.layerCount = 1;
+        info.colorAttachmentCount = 1;
+        info.pColorAttachments = &color;
+        if (stencil) {
+            floor_stencil_->transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+            stencil_info.imageView = floor_stencil_->view();
+            stencil_info.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+            stencil_info.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+            stencil_info.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+            stencil_info.clearValue.depthStencil = {1.0f, 1};
+            info.pStencilAttachment = &stencil_info;
+            info.pDepthAttachment = has_depth ? &stencil_info : nullptr;
+        }
+        vkCmdBeginRendering(cmd, &info);
+        set_scissor(cmd, pixel);
+        bind(cmd, stage, input, input, pipelines_->linear_sampler());
+        StagePushConstants push;
+        push.rect[2] = push.rect[3] = 1;
+        push.canvas[0] = float(width_);
+        push.canvas[1] = float(height_);
+        vkCmdPushConstants(cmd, pipelines_->layout(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(push), &push);
+        const bool is_tile = stage == Stage::TileToTarget || stage == Stage::TileToAccum;
+        vkCmdDraw(cmd, is_tile ? 4 : 3, 1, 0, 0);
+        vkCmdEndRendering(cmd);
+    };
+    return context_.submit_and_wait([&](VkCommandBuffer cmd) {
+        // Inputs are sampled while another image is the attachment: the output is drawn with
+        // the accumulation as input, everything else with a tile texture or the output.
+        if (any_tile && options_.plan.draw_direct)
+            draw_one_pixel(cmd, Stage::TileToAccum, accumulation_, false, any_tile->view());
+        output_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        if (floor_color_) {
+            if (any_tile)
+                draw_one_pixel(cmd, Stage::TileToTarget, *floor_color_, true, any_tile->view());
+            if (options_.fill_uncovered)
+                draw_one_pixel(cmd, Stage::FillUncovered, *floor_color_, true, output_.view());
+            draw_one_pixel(cmd, Stage::Composite, accumulation_, true, output_.view());
+        }
+        accumulation_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        draw_one_pixel(cmd, Stage::Output, output_, false, accumulation_.view());
+    });
+}
+
+void Compositor::set_scissor(VkCommandBuffer cmd, const PixelRect& rect) {
+    VkViewport viewport{0, 0, float(width_), float(height_), 0, 1};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    VkRect2D scissor = to_vk(rect);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void Compositor::bind(VkCommandBuffer cmd, Stage stage, VkImageView primary,
+                      VkImageView secondary, VkSampler sampler) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_->pipeline(stage));
+    VkDescriptorImageInfo images[2] = {
+        {sampler, primary, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        {sampler, secondary, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+    VkDescriptorBufferInfo buffer{violations_.buffer(), 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet writes[3] = {};
+    for (uint32_t i = 0; i < 3; ++i) {
+        writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        writes[i].dstBinding = i;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = i < 2 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                         : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        if (i < 2) writes[i].pImageInfo = &images[i];
+        else writes[i].pBufferInfo = &buffer;
+    }
+    context_.push_descriptor_fn()(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_->layout(), 0,
+                                  3, writes);
+}
+
+void Compositor::draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor,
+                            const PixelRect& scissor, FloorFrameReport& report) {
+    const LoadedFloor& loaded = resources_->floors()[floor];
+    const auto tint = isolation_tint(floor);
+    set_scissor(cmd, scissor);
+    for (const LoadedTile& tile : loaded.tiles) {
+        const PixelRect shaded = intersect(tile.pixels, scissor);
+        if (shaded.empty()) continue;
+        bind(cmd, stage, tile.texture->view(), tile.texture->view(),
+             pipelines_->linear_sampler());
+        StagePushConstants push;
+        push.rect[0] = float(tile.rect.x);
+        push.rect[1] = float(tile.rect.y);
+        push.rect[2] = float(tile.rect.width);
+        push.rect[3] = float(tile.rect.height);
+        push.tint[0] = tint[0];
+        push.tint[1] = tint[1];
+        push.tint[2] = tint[2];
+        push.canvas[0] = float(width_);
+        push.canvas[1] = float(height_);
+        push.floor_index = floor;
+        push.mode = options_.view == OutputView::Isolation ? 1u : 0u;
+        vkCmdPushConstants(cmd, pipelines_->layout(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(push), &push);
+        vkCmdDraw(cmd, 4, 1, 0, 0);
+        ++report.passes;
+        report.pixels_shaded += shaded.area();
+    }
+}
+
+void Compositor::record_floor_direct(VkCommandBuffer cmd, const FloorStep& step,
+                                     FloorFrameReport& report) {
+    accumulation_.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    VkRenderingAttachmentInfo color = color_attachment(accumulation_.view(), false);
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = to_vk(step.scissor);
+    info.layerCount = 1;
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &color;
+    vkCmdBeginRendering(cmd, &info);
+    // Over is associative, so drawing each tile over the accumulation equals compositing the
+    // floor's own "tiles over transparent" image over it (docs/OVERVIEW.md).
+    draw_tiles(cmd, Stage::TileToAccum, step.floor, step.scissor, report);
+    vkCmdEndRendering(cmd);
+}
+
+void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step,
+                                             bool clear_all, FloorFrameReport& report) {
+    GpuImage& color = *floor_color_;
+    GpuImage& stencil = *floor_stencil_;
+    const bool has_depth = context_.stencil_format() != VK_FORMAT_S8_UINT;
+    color.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    stencil.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+
+    VkRenderingAttachmentInfo color_info = color_attachment(color.view(), true);
+    VkRenderingAttachmentInfo stencil_info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    stencil_info.imageView = stencil.view();
+    stencil_info.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    stencil_info.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    stencil_info.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    stencil_info.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    // The clear covers the render area only; debug views read the whole target, so then the
+    // whole target is cleared.
+    info.renderArea = to_vk(clear_all ? PixelRect{0, 0, int64_t(width_), int64_t(height_)} : step.scissor);
+    info.layerCount = 1;
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &color_info;
+    info.pStencilAttachment = &stencil_info;
+    info.pDepthAttachment = has_depth ? &stencil_info : nullptr;
+    vkCmdBeginRendering(cmd, &info);
+    draw_tiles(cmd, Stage::TileToTarget, step.floor, step.scissor, report);
+    if (options_.fill_uncovered) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                          pipelines_->pipeline(Stage::FillUncovered));
+        StagePushConstants push;
+        std::memcpy(push.tint, options_.fill_uncovered->data(), sizeof(push.tint));
+        vkCmdPushConstants(cmd, pipelines_->layout(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(push), &push);
+        const PixelRect all{0, 0, int64_t(width_), int64_t(height_)};
+        set_scissor(cmd, all);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        ++report.passes;
+        report.pixels_shaded += all.area();
+    }
+    vkCmdEndRendering(cmd);
+
+    // Composite: floor target over the accumulation, only where the floor's stencil says 1.
+    color.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    accumulation_.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    VkRenderingAttachmentInfo accum_info = color_attachment(accumulation_.view(), false);
+    stencil_info.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    stencil_info.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+    info.renderArea = to_vk(step.scissor);
+    info.pColorAttachments = &accum_info;
+    vkCmdBeginRendering(cmd, &info);
+    set_scissor(cmd, step.scissor);
+    bind(cmd, Stage::Composite, color.view(), color.view(), pipelines_->nearest_sampler());
+    StagePushConstants push;
+    push.floor_index = step.floor;
+    vkCmdPushConstants(cmd, pipelines_->layout(),
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
+                       &push);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRendering(cmd);
+    ++report.passes;
+    report.pixels_shaded += step.scissor.area();
+}
+
+void Compositor::record_output(VkCommandBuffer cmd, FrameStats& stats) {
+    accumulation_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    const bool floor_view = view_reads_floor_target(options_.view) && floor_color_;
+    if (floor_view) floor_color_->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    output_.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    const PixelRect all{0, 0, int64_t(width_), int64_t(height_)};
+    VkRenderingAttachmentInfo color = color_attachment(output_.view(), false);
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // every pixel is written
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = to_vk(all);
+    info.layerCount = 1;
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &color;
+    vkCmdBeginRendering(cmd, &info);
+    set_scissor(cmd, all);
+    bind(cmd, Stage::Output, accumulation_.view(),
+         floor_view ? floor_color_->view() : accumulation_.view(), pipelines_->nearest_sampler());
+    StagePushConstants push;
+    std::memcpy(push.tint, scene_.background.data(), sizeof(push.tint));
+    push.canvas[0] = float(width_);
+    push.canvas[1] = float(height_);
+    push.floor_index = uint32_t(options_.view);
+    vkCmdPushConstants(cmd, pipelines_->layout(),
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
+                       &push);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRendering(cmd);
+    ++stats.passes;
+    stats.pixels_shaded += all.area();
+}
+
+void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats) {
+    accumulation_.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, accumulation_.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
+                         1, &range);
+    const bool floor_view = view_reads_floor_target(options_.view);
+    if (floor_view) {
+        // The view reads the active floor's target even where this frame draws nothing.
+        floor_color_->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        vkCmdClearColorImage(cmd, floor_color_->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                             &zero, 1, &range);
+    }
+    for (const FloorStep& step : plan.steps) {
+        FloorFrameReport report;
+        report.floor = step.floor;
+        report.path = to_string(step.path);
+        report.why = step.why;
+        report.scissor = step.scissor;
+        if (step.path == FloorPath::Direct) record_floor_direct(cmd, step, report);
+        if (step.path == FloorPath::ThroughTarget) {
+            const bool is_viewed = floor_view && step.floor == stats.active_floor;
+            record_floor_through_target(cmd, step, is_viewed, report);
+        }
+        stats.passes += report.passes;
+        stats.pixels_shaded += report.pixels_shaded;
+        stats.floors.push_back(report);
+    }
+    record_output(cmd, stats);
+}
+
+Result<FrameStats> Compositor::render(uint32_t active_floor) {
+    if (active_floor >= floor_count())
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: active floor {} does not exist (the scene has {} "
+                                      "floors, 0..{})",
+                                      scene_.file.string(), active_floor, floor_count(),
+                                      floor_count() - 1));
+    if (view_reads_floor_target(options_.view) && !floor_color_)
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("view \"{}\" needs a floor target; load the scene with it",
+                                      to_string(options_.view)));
+    const auto start = std::chrono::steady_clock::now();
+    const ResourceCounters before = context_.counters();
+    PlanOptions plan_options = options_.plan;
+    if (view_reads_floor_target(options_.view)) plan_options.force_target_floor = active_floor;
+    last_plan_ = plan_frame(width_, height_, resources_->geometry(), active_floor, plan_options);
+
+    FrameStats stats;
+    stats.active_floor = active_floor;
+    std::memset(violations_.mapped(), 0, violations_.size());
+    ACETATE_TRY(context_.submit_and_wait(
+        [&](VkCommandBuffer cmd) { record_frame(cmd, last_plan_, stats); }));
+    stats.milliseconds = milliseconds_since(start);
+
+    const auto* counts = static_cast<const uint32_t*>(violations_.mapped());
+    for (FloorFrameReport& f : stats.floors) {
+        f.violations = counts[f.floor];
+        stats.violations += f.violations;
+    }
+    const ResourceCounters used = delta(context_.counters(), before);
+    stats.images_loaded = used.images_loaded;
+    stats.targets_allocated = used.targets_allocated;
+    stats.shaders_compiled = used.shaders_compiled;
+    stats.pipelines_created = used.pipelines_created;
+    return stats;
+}
+
+Result<ImageRGBA> Compositor::read_output() { return read_back_image(context_, output_); }
+Result<ImageRGBA> Compositor::read_accumulation() {
+    return read_back_image(context_, accumulation_);
+}
+
+std::vector<TargetInfo> Compositor::targets_held() const {
+    std::vector<TargetInfo> out;
+    auto add = [&](const GpuImage& image) {
+        out.push_back({image.name(), format_name(image.format()), image.width(), image.height(),
+                       image.bytes()});
+    };
+    add(accumulation_);
+    add(output_);
+    if (floor_color_) add(*floor_color_);
+    if (floor_stencil_) add(*floor_stencil_);
+    return out;
+}
+
+std::vector<TargetInfo> Compositor::images_held() const {
+    std::vector<TargetInfo> out = targets_held();
+    for (const GpuImage* image : resources_->images())
+        out.push_back({image->name(), format_name(image->format()), image->width(),
+                       image->height(), image->bytes()});
+    return out;
+}
+
+}  // namespace acetate

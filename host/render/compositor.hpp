@@ -1,0 +1,114 @@
+#pragma once
+// The floor compositor: per frame, for each floor up to the active one, bottom to top, draw the
+// floor's tiles premultiplied (into its own target, writing stencil = 1 where they cover, or
+// straight into the accumulation when it has no effects), composite with premultiplied "over"
+// gated by that stencil, then write the accumulation over the canvas background to the output.
+// Everything is created at load; render() allocates, loads and compiles nothing.
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "render/frame_plan.hpp"
+#include "render/frame_stats.hpp"
+#include "render/host_pipelines.hpp"
+#include "render/scene_resources.hpp"
+#include "scene/scene.hpp"
+#include "vulkan/gpu_image.hpp"
+
+namespace acetate {
+
+class VulkanContext;
+
+// What the output image shows (seed 000's AlphaValidator views).
+enum class OutputView {
+    Normal = 0,      // the composite over the canvas background
+    FloorAlpha = 1,  // the active floor's own alpha, grey
+    AccumAlpha = 2,  // the accumulation's alpha, grey
+    FloorRgb = 3,    // the active floor's rgb with alpha forced to 1
+    Violations = 4,  // red where the active floor has a == 0 but rgb != 0 (or NaN/Inf)
+    Isolation = 5,   // each floor tinted its own colour
+};
+Result<OutputView> parse_view(const std::string& name);
+const char* to_string(OutputView view);
+// Views that read the active floor's own target (which then must exist).
+bool view_reads_floor_target(OutputView view);
+// The isolation tint of floor `index` (linear rgb, distinct for neighbouring floors).
+std::array<float, 3> isolation_tint(uint32_t index);
+
+struct CompositorOptions {
+    VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;  // targets and textures; or RGBA32F
+    OutputView view = OutputView::Normal;
+    PlanOptions plan;                 // optimisations; all on by default
+    std::set<std::string> mask_kinds;  // mask kinds some effect needs (composited at load)
+    // Test hook: after a floor's tiles, paint this colour into its target wherever the floor
+    // does NOT cover. Stands in for an effect that breaks the contract, so a test can show the
+    // composite's stencil gate keeps it out of the accumulation. Forces floor targets.
+    std::optional<std::array<float, 4>> fill_uncovered;
+};
+
+class Compositor {
+public:
+    // Loads images, composites masks, allocates targets, creates and warms every pipeline the
+    // scene needs. Errors name the scene file and field (e.g. a canvas over the device limit).
+    static Result<std::unique_ptr<Compositor>> load(VulkanContext& context,
+                                                    const SceneDesc& scene,
+                                                    const CompositorOptions& options);
+    ~Compositor();
+    Compositor(const Compositor&) = delete;
+    Compositor& operator=(const Compositor&) = delete;
+
+    // Renders floors 0..active_floor and the output. Fails with InvalidInput for a floor index
+    // out of range, or when the view needs a floor target this compositor was loaded without.
+    Result<FrameStats> render(uint32_t active_floor);
+    // Changes the view for later frames (no allocation; see render()).
+    void set_view(OutputView view) { options_.view = view; }
+
+    // Float readbacks for tests and file output (premultiplied, linear).
+    Result<ImageRGBA> read_output();
+    Result<ImageRGBA> read_accumulation();
+
+    uint32_t floor_count() const { return uint32_t(resources_->floors().size()); }
+    uint32_t width() const { return width_; }
+    uint32_t height() const { return height_; }
+    const LoadStats& load_stats() const { return load_stats_; }
+    const FramePlan& last_plan() const { return last_plan_; }
+    // Render targets held (accumulation, output, floor target and stencil when needed).
+    std::vector<TargetInfo> targets_held() const;
+    // Every GPU image held, targets and scene textures and masks alike.
+    std::vector<TargetInfo> images_held() const;
+
+private:
+    Compositor(VulkanContext& context) : context_(context) {}
+    Result<void> create_targets(const SceneDesc& scene);
+    Result<void> warm_pipelines();
+    void record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats);
+    void record_floor_direct(VkCommandBuffer cmd, const FloorStep& step, FloorFrameReport& report);
+    void record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step, bool clear_all,
+                                     FloorFrameReport& report);
+    void record_output(VkCommandBuffer cmd, FrameStats& stats);
+    void draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor, const PixelRect& scissor,
+                    FloorFrameReport& report);
+    void bind(VkCommandBuffer cmd, Stage stage, VkImageView primary, VkImageView secondary,
+              VkSampler sampler);
+    void set_scissor(VkCommandBuffer cmd, const PixelRect& rect);
+    bool needs_floor_target() const;
+
+    VulkanContext& context_;
+    CompositorOptions options_;
+    SceneDesc scene_;
+    uint32_t width_ = 0, height_ = 0;
+    std::unique_ptr<SceneResources> resources_;
+    std::unique_ptr<HostPipelines> pipelines_;
+    GpuImage accumulation_;
+    GpuImage output_;
+    std::optional<GpuImage> floor_color_;
+    std::optional<GpuImage> floor_stencil_;
+    GpuBuffer violations_;
+    LoadStats load_stats_;
+    FramePlan last_plan_;
+};
+
+}  // namespace acetate

@@ -1,0 +1,45 @@
+#include "render/frame_stats.hpp"
+
+namespace acetate {
+
+nlohmann::json to_json(const FrameStats& s) {
+    nlohmann::json floors = nlohmann::json::array();
+    for (const FloorFrameReport& f : s.floors) {
+        floors.push_back({{"floor", f.floor},
+                          {"path", f.path},
+                          {"why", f.why},
+                          {"scissor", {f.scissor.x0, f.scissor.y0, f.scissor.x1 - f.scissor.x0,
+                                       f.scissor.y1 - f.scissor.y0}},
+                          {"passes", f.passes},
+                          {"pixels_shaded", f.pixels_shaded},
+                          {"violations", f.violations}});
+    }
+    return {{"active_floor", s.active_floor},
+            {"milliseconds", s.milliseconds},
+            {"passes", s.passes},
+            {"pixels_shaded", s.pixels_shaded},
+            {"images_loaded", s.images_loaded},
+            {"render_targets_allocated", s.targets_allocated},
+            {"shaders_compiled", s.shaders_compiled},
+            {"pipelines_created", s.pipelines_created},
+            {"premultiplied_violations", s.violations},
+            {"floors", floors}};
+}
+
+nlohmann::json to_json(const LoadStats& s) {
+    return {{"milliseconds", s.milliseconds},
+            {"images_loaded", s.images_loaded},
+            {"render_targets_allocated", s.targets_allocated},
+            {"shaders_compiled", s.shaders_compiled},
+            {"pipelines_created", s.pipelines_created}};
+}
+
+nlohmann::json to_json(const TargetInfo& t) {
+    return {{"name", t.name},
+            {"format", t.format},
+            {"width", t.width},
+            {"height", t.height},
+            {"bytes", t.bytes}};
+}
+
+}  // namespace acetate

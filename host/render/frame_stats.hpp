@@ -1,0 +1,57 @@
+#pragma once
+// What a load and each frame did, in numbers a test or a person can check: `--stats` writes
+// these as JSON.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/pixel_rect.hpp"
+
+namespace acetate {
+
+struct FloorFrameReport {
+    uint32_t floor = 0;
+    std::string path;           // skipped / direct / through-target
+    std::string why;
+    PixelRect scissor;
+    uint32_t passes = 0;
+    uint64_t pixels_shaded = 0;  // sum over this floor's passes of the area they shade
+    uint64_t violations = 0;     // premultiplied-invariant violations counted on the GPU
+};
+
+struct FrameStats {
+    uint32_t active_floor = 0;
+    double milliseconds = 0;     // record + submit + wait for the frame
+    uint32_t passes = 0;         // draws recorded
+    uint64_t pixels_shaded = 0;  // sum over passes of their scissored area
+    uint64_t images_loaded = 0;      // during this frame (a warm frame: 0)
+    uint64_t targets_allocated = 0;  // during this frame
+    uint64_t shaders_compiled = 0;   // during this frame
+    uint64_t pipelines_created = 0;  // during this frame
+    uint64_t violations = 0;     // fragments with a == 0 and rgb != 0, or NaN/Inf
+    std::vector<FloorFrameReport> floors;
+};
+
+struct LoadStats {
+    double milliseconds = 0;
+    uint64_t images_loaded = 0;
+    uint64_t targets_allocated = 0;
+    uint64_t shaders_compiled = 0;
+    uint64_t pipelines_created = 0;
+};
+
+struct TargetInfo {
+    std::string name;
+    std::string format;
+    uint32_t width = 0, height = 0;
+    uint64_t bytes = 0;
+};
+
+nlohmann::json to_json(const FrameStats& stats);
+nlohmann::json to_json(const LoadStats& stats);
+nlohmann::json to_json(const TargetInfo& target);
+
+}  // namespace acetate

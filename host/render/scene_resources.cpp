@@ -1,0 +1,117 @@
+#include "render/scene_resources.hpp"
+
+#include <fmt/format.h>
+
+#include "scene/image_io.hpp"
+#include "scene/mask_compositor.hpp"
+#include "vulkan/vulkan_context.hpp"
+
+namespace acetate {
+namespace {
+
+bool fully_opaque(const ImageRGBA& image) {
+    for (size_t i = 3; i < image.pixels.size(); i += 4)
+        if (image.pixels[i] != 1.0f) return false;
+    return true;
+}
+
+Result<std::unique_ptr<GpuImage>> upload(VulkanContext& context, const std::string& name,
+                                         const ImageRGBA& pixels, VkFormat format) {
+    auto image = GpuImage::create(context, name, pixels.width, pixels.height, format,
+                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                  false);
+    if (!image) return image.error();
+    auto owned = std::make_unique<GpuImage>(std::move(image.value()));
+    ACETATE_TRY(upload_image(context, *owned, pixels));
+    return owned;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<SceneResources>> SceneResources::load(
+    VulkanContext& context, const SceneDesc& scene, VkFormat texture_format,
+    const std::set<std::string>& mask_kinds) {
+    auto out = std::make_unique<SceneResources>();
+    struct Texture {
+        const GpuImage* image;
+        bool opaque;
+    };
+    std::map<std::filesystem::path, Texture> by_path;  // a file shared by tiles loads once
+    MaskImages mask_images;
+
+    for (const FloorDesc& floor_desc : scene.floors) {
+        LoadedFloor floor;
+        floor.name = floor_desc.name;
+        for (const TileDesc& tile : floor_desc.tiles) {
+            auto found = by_path.find(tile.image);
+            if (found == by_path.end()) {
+                auto pixels = load_image(tile.image, ImageRole::Colour);
+                if (!pixels) return pixels.error();
+                ++context.counters().images_loaded;
+                auto texture = upload(context, "tile " + tile.image.filename().string(),
+                                      pixels.value(), texture_format);
+                if (!texture) return texture.error();
+                found = by_path
+                            .emplace(tile.image,
+                                     Texture{texture.value().get(), fully_opaque(pixels.value())})
+                            .first;
+                out->textures_.push_back(std::move(texture.value()));
+            }
+            LoadedTile loaded;
+            loaded.texture = found->second.image;
+            loaded.rect = tile.rect;
+            loaded.pixels = pixels_covered(tile.rect.x, tile.rect.y, tile.rect.width,
+                                           tile.rect.height, scene.width, scene.height);
+            loaded.opaque = found->second.opaque;
+            floor.geometry.coverage = bounding_union(floor.geometry.coverage, loaded.pixels);
+            if (loaded.opaque && !loaded.pixels.empty()) floor.geometry.opaque.push_back(loaded.pixels);
+            floor.tiles.push_back(loaded);
+
+            for (const auto& [kind, path] : tile.masks) {
+                if (!mask_kinds.count(kind) || mask_images.count(path)) continue;
+                auto mask = load_image(path, ImageRole::Mask);
+                if (!mask) return mask.error();
+                ++context.counters().images_loaded;
+                mask_images.emplace(path, std::move(mask.value()));
+            }
+        }
+        floor.geometry.needs_target = !floor_desc.effects.empty();
+        out->floors_.push_back(std::move(floor));
+    }
+
+    // One scene-space texture per kind per floor, only for kinds asked for and present.
+    for (size_t f = 0; f < scene.floors.size(); ++f) {
+        for (const std::string& kind : mask_kinds) {
+            const bool present = std::any_of(
+                scene.floors[f].tiles.begin(), scene.floors[f].tiles.end(),
+                [&](const TileDesc& t) { return t.masks.count(kind) != 0; });
+            if (!present) continue;
+            const ImageRGBA composite = composite_floor_mask(scene.floors[f], kind, scene.width,
+                                                             scene.height, mask_images);
+            auto image = GpuImage::create(
+                context, fmt::format("floor{}.mask.{}", f, kind), scene.width, scene.height,
+                VK_FORMAT_R16G16B16A16_SFLOAT,
+                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, false);
+            if (!image) return image.error();
+            ACETATE_TRY(upload_image(context, image.value(), composite));
+            out->floors_[f].masks.emplace(kind, std::move(image.value()));
+        }
+    }
+    return out;
+}
+
+std::vector<FloorGeometry> SceneResources::geometry() const {
+    std::vector<FloorGeometry> out;
+    for (const LoadedFloor& f : floors_) out.push_back(f.geometry);
+    return out;
+}
+
+std::vector<const GpuImage*> SceneResources::images() const {
+    std::vector<const GpuImage*> out;
+    for (const auto& t : textures_) out.push_back(t.get());
+    for (const LoadedFloor& f : floors_)
+        for (const auto& [kind, image] : f.masks) out.push_back(&image);
+    return out;
+}
+
+}  // namespace acetate

@@ -1,0 +1,54 @@
+#pragma once
+// Everything a scene needs on the GPU that does not change per frame: tile textures (each file
+// decoded and uploaded once), each floor's scene-space masks of the kinds effects need, and the
+// geometry the frame planner works from. Built once at load; a floor switch touches none of it.
+
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/pixel_rect.hpp"
+#include "render/frame_plan.hpp"
+#include "scene/scene.hpp"
+#include "vulkan/gpu_image.hpp"
+
+namespace acetate {
+
+class VulkanContext;
+
+struct LoadedTile {
+    const GpuImage* texture = nullptr;
+    SceneRect rect;
+    PixelRect pixels;  // pixels it shades on the canvas
+    bool opaque = false;  // alpha is 1 at every texel
+};
+
+struct LoadedFloor {
+    std::string name;
+    std::vector<LoadedTile> tiles;
+    std::map<std::string, GpuImage> masks;  // kind -> scene-space composite, this floor's own
+    FloorGeometry geometry;
+};
+
+class SceneResources {
+public:
+    // Decodes and uploads every tile image in `texture_format`, and composites the masks of
+    // `mask_kinds` per floor (kinds no effect needs are not even decoded). Errors name the file.
+    static Result<std::unique_ptr<SceneResources>> load(VulkanContext& context,
+                                                        const SceneDesc& scene,
+                                                        VkFormat texture_format,
+                                                        const std::set<std::string>& mask_kinds);
+
+    const std::vector<LoadedFloor>& floors() const { return floors_; }
+    std::vector<FloorGeometry> geometry() const;
+    // Every GPU image held (textures and masks), for "what does the host hold" reports.
+    std::vector<const GpuImage*> images() const;
+
+private:
+    std::vector<std::unique_ptr<GpuImage>> textures_;
+    std::vector<LoadedFloor> floors_;
+};
+
+}  // namespace acetate

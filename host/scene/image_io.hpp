@@ -1,0 +1,47 @@
+#pragma once
+// Image files in and out, through OpenImageIO. Everything inside the host is linear light,
+// premultiplied RGBA float (DESIGN.md "Conventions").
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "core/result.hpp"
+
+namespace acetate {
+
+// A CPU image: RGBA float, row-major, y down (row 0 is the top).
+struct ImageRGBA {
+    uint32_t width = 0, height = 0;
+    std::vector<float> pixels;  // width * height * 4
+
+    ImageRGBA() = default;
+    ImageRGBA(uint32_t w, uint32_t h) : width(w), height(h), pixels(size_t(w) * h * 4, 0.0f) {}
+    float* at(uint32_t x, uint32_t y) { return &pixels[(size_t(y) * width + x) * 4]; }
+    const float* at(uint32_t x, uint32_t y) const { return &pixels[(size_t(y) * width + x) * 4]; }
+};
+
+enum class ImageRole {
+    Colour,  // integer formats are sRGB-decoded; straight alpha is premultiplied after decoding;
+             // associated-alpha files (EXR) are taken as they are
+    Mask,    // data: no colour decode, no premultiplication; values scaled to [0, 1]
+};
+
+// Loads PNG, JPEG, WebP, TIFF, EXR (anything OpenImageIO reads). Images without alpha get
+// a = 1; single-channel images are replicated to RGB. Error names the file.
+Result<ImageRGBA> load_image(const std::filesystem::path& file, ImageRole role);
+
+// Writes by extension: `.exr` = half-float, premultiplied, linear; `.png` = 8-bit sRGB,
+// straight alpha (un-premultiplied safely: no division at alpha that rounds to 0 in 8 bits, no
+// NaN). The file is written to a temporary name and renamed, so a reader never sees half a file.
+Result<void> save_image(const std::filesystem::path& file, const ImageRGBA& image);
+
+// Colour transfer helpers, exposed for tests (IEC 61966-2-1 piecewise sRGB curve).
+float srgb_to_linear(float encoded);
+float linear_to_srgb(float linear);
+
+// Converts premultiplied linear RGBA to straight-alpha 8-bit sRGB (what `.png` holds).
+// Where the 8-bit alpha is 0 the colour is 0; colour is clamped to [0, 1] before encoding.
+void premultiplied_to_srgb8(const float in[4], uint8_t out[4]);
+
+}  // namespace acetate

@@ -1,0 +1,20 @@
+#version 450
+// Floor target -> accumulation. A pure pass-through (seed 000, A4): the pipeline's stencil test
+// (EQUAL 1) gates it to the floor's coverage and its blend (One, OneMinusSrcAlpha) does "over".
+layout(push_constant) uniform Push {
+    vec4 rect;
+    vec4 tint;
+    vec2 canvas;
+    uint floor_index;
+    uint tint_mode;
+} pc;
+layout(set = 0, binding = 0) uniform sampler2D floor_color;
+layout(set = 0, binding = 2) buffer Violations { uint count[]; } violations;
+layout(location = 0) out vec4 color;
+
+void main() {
+    vec4 c = texelFetch(floor_color, ivec2(gl_FragCoord.xy), 0);
+    bool bad = (c.a <= 0.0 && any(notEqual(c.rgb, vec3(0.0)))) || any(isnan(c)) || any(isinf(c));
+    if (bad) atomicAdd(violations.count[pc.floor_index], 1u);
+    color = c;
+}

@@ -1,0 +1,37 @@
+#version 450
+// Accumulation -> output image, with the debug views of seed 000's AlphaValidator.
+layout(push_constant) uniform Push {
+    vec4 background;    // straight-alpha linear background colour
+    vec4 unused;
+    vec2 canvas;
+    uint view;          // see OutputView in render/compositor.hpp
+    uint pad;
+} pc;
+layout(set = 0, binding = 0) uniform sampler2D accumulation;
+layout(set = 0, binding = 1) uniform sampler2D active_floor;  // the active floor's own target
+layout(location = 0) out vec4 color;
+
+const uint kNormal = 0u, kFloorAlpha = 1u, kAccumAlpha = 2u, kFloorRgb = 3u, kViolations = 4u,
+           kIsolation = 5u;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 acc = texelFetch(accumulation, p, 0);
+    vec4 flr = texelFetch(active_floor, p, 0);
+    if (pc.view == kFloorAlpha) {
+        color = vec4(vec3(flr.a), 1.0);
+    } else if (pc.view == kAccumAlpha) {
+        color = vec4(vec3(acc.a), 1.0);
+    } else if (pc.view == kFloorRgb) {
+        color = vec4(flr.rgb, 1.0);
+    } else if (pc.view == kViolations) {
+        bool bad = (flr.a <= 0.0 && any(notEqual(flr.rgb, vec3(0.0)))) || any(isnan(flr)) ||
+                   any(isinf(flr));
+        float luma = dot(flr.rgb, vec3(0.2126, 0.7152, 0.0722));
+        color = bad ? vec4(1.0, 0.0, 0.0, 1.0) : vec4(vec3(0.25 * clamp(luma, 0.0, 1.0)), 1.0);
+    } else {
+        // Premultiplied over the canvas background (seed 000, A5).
+        vec4 bg = vec4(pc.background.rgb * pc.background.a, pc.background.a);
+        color = acc + bg * (1.0 - acc.a);
+    }
+}

@@ -1,0 +1,96 @@
+#pragma once
+// GPU images and buffers with their memory, owned RAII-style, plus the transfers the host
+// needs: upload a CPU image, read one back as float.
+
+#include <vulkan/vulkan.h>
+
+#include <string>
+
+#include "core/result.hpp"
+#include "scene/image_io.hpp"
+
+namespace acetate {
+
+class VulkanContext;
+
+// A 2D image with its own memory and one view.
+class GpuImage {
+public:
+    GpuImage() = default;
+    // Creates a device-local image; counts one allocated render target when `is_target`.
+    // Fails with DeviceLimit when the size exceeds maxImageDimension2D.
+    static Result<GpuImage> create(VulkanContext& context, std::string name, uint32_t width,
+                                   uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                                   bool is_target);
+    ~GpuImage();
+    GpuImage(GpuImage&& other) noexcept;
+    GpuImage& operator=(GpuImage&& other) noexcept;
+    GpuImage(const GpuImage&) = delete;
+    GpuImage& operator=(const GpuImage&) = delete;
+
+    VkImage image() const { return image_; }
+    VkImageView view() const { return view_; }
+    VkFormat format() const { return format_; }
+    uint32_t width() const { return width_; }
+    uint32_t height() const { return height_; }
+    const std::string& name() const { return name_; }
+    VkImageAspectFlags aspect() const { return aspect_; }
+    uint64_t bytes() const { return bytes_; }
+
+    // The layout the image is left in by the last recorded transition.
+    VkImageLayout layout() const { return layout_; }
+    // Records a barrier to `layout` (full pipeline dependency; the host's passes are few and
+    // each depends on the previous one, so finer stages would buy nothing on lavapipe).
+    void transition(VkCommandBuffer cmd, VkImageLayout layout);
+
+private:
+    void release();
+    VulkanContext* context_ = nullptr;
+    VkImage image_ = VK_NULL_HANDLE;
+    VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    VkImageView view_ = VK_NULL_HANDLE;
+    VkFormat format_ = VK_FORMAT_UNDEFINED;
+    VkImageAspectFlags aspect_ = VK_IMAGE_ASPECT_COLOR_BIT;
+    VkImageLayout layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
+    uint32_t width_ = 0, height_ = 0;
+    uint64_t bytes_ = 0;
+    std::string name_;
+};
+
+// A host-visible, coherent buffer, persistently mapped.
+class GpuBuffer {
+public:
+    GpuBuffer() = default;
+    static Result<GpuBuffer> create(VulkanContext& context, VkDeviceSize size,
+                                    VkBufferUsageFlags usage);
+    ~GpuBuffer();
+    GpuBuffer(GpuBuffer&& other) noexcept;
+    GpuBuffer& operator=(GpuBuffer&& other) noexcept;
+    GpuBuffer(const GpuBuffer&) = delete;
+    GpuBuffer& operator=(const GpuBuffer&) = delete;
+
+    VkBuffer buffer() const { return buffer_; }
+    void* mapped() const { return mapped_; }
+    VkDeviceSize size() const { return size_; }
+
+private:
+    void release();
+    VulkanContext* context_ = nullptr;
+    VkBuffer buffer_ = VK_NULL_HANDLE;
+    VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    void* mapped_ = nullptr;
+    VkDeviceSize size_ = 0;
+};
+
+// Bytes per pixel of the colour formats the host uses (RGBA8, RGBA16F, RGBA32F).
+uint32_t bytes_per_pixel(VkFormat format);
+const char* format_name(VkFormat format);
+
+// Copies `pixels` (RGBA float, same size as the image) into `image`, converting to its format
+// (RGBA16F rounds to nearest half), and leaves it in SHADER_READ_ONLY_OPTIMAL.
+Result<void> upload_image(VulkanContext& context, GpuImage& image, const ImageRGBA& pixels);
+
+// Reads a colour image back as RGBA float; leaves the image in its previous layout.
+Result<ImageRGBA> read_back_image(VulkanContext& context, GpuImage& image);
+
+}  // namespace acetate
