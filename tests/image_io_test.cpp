@@ -3,9 +3,8 @@
 
 #include "scene/image_io.hpp"
 
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -70,9 +69,9 @@ TEST(ImageIoTest, SrgbCurveIsThePiecewiseIecCurve) {
 
 TEST(ImageIoTest, Png8StraightAlphaIsDecodedThenPremultiplied) {
     const fs::path file = write_png8(test::scratch_dir() / "tile.png", 3, 1, 4,
-                                     {255, 128, 64, 128,    // half covered
-                                      200, 100, 50, 255,    // opaque
-                                      255, 255, 255, 0});   // transparent, colour left behind
+                                     {255, 128, 64, 128,   // half covered
+                                      200, 100, 50, 255,   // opaque
+                                      255, 255, 255, 0});  // transparent, colour left behind
     auto loaded = load_image(file, ImageRole::Colour);
     ASSERT_TRUE(loaded.ok()) << loaded.error().message;
     ASSERT_EQ(loaded->width, 3u);
@@ -129,9 +128,9 @@ TEST(ImageIoTest, MasksAreDataNotDecodedNorPremultiplied) {
 
 TEST(ImageIoTest, ExrIsAssociatedAlphaTakenAsIs) {
     ImageRGBA image(3, 1);
-    const float values[12] = {0.3f, 0.2f, 0.1f, 0.5f,     // half covered, premultiplied
-                              0.25f, 0.5f, 2.0f, 1.0f,    // HDR, opaque
-                              0.0f, 0.0f, 0.0f, 0.0f};
+    const float values[12] = {0.3f,  0.2f, 0.1f, 0.5f,  // half covered, premultiplied
+                              0.25f, 0.5f, 2.0f, 1.0f,  // HDR, opaque
+                              0.0f,  0.0f, 0.0f, 0.0f};
     std::copy(values, values + 12, image.pixels.begin());
     const fs::path file = test::write_exr(test::scratch_dir() / "tile.exr", image);
     for (ImageRole role : {ImageRole::Colour, ImageRole::Mask}) {
@@ -195,7 +194,7 @@ TEST(ImageIoTest, UnpremultiplyForPngIsSafeAtTinyAlpha) {
         {{1.0f, 1.0f, 1.0f, 1.0f / 1000}, {0, 0, 0, 0}},  // rgb > a: invalid, still no blow-up
         {{0.0f, 0.0f, 0.0f, 0.0f}, {0, 0, 0, 0}},
         {{0.003f, 0.003f, 0.0f, 0.003f}, {255, 255, 0, 1}},  // alpha rounds to 1/255
-        {{nan, inf, 0.25f, 0.5f}, {0, 255, 188, 128}},        // 0.5 straight -> sRGB 188
+        {{nan, inf, 0.25f, 0.5f}, {0, 255, 188, 128}},       // 0.5 straight -> sRGB 188
         {{0.5f, 0.5f, 0.5f, nan}, {0, 0, 0, 0}},
         {{2.0f, -1.0f, 0.5f, 1.0f}, {255, 0, 188, 255}},
     };
@@ -211,10 +210,9 @@ TEST(ImageIoTest, UnpremultiplyForPngIsSafeAtTinyAlpha) {
 
 TEST(ImageIoTest, PngRoundTripMatchesEightBitQuantisation) {
     ImageRGBA image(4, 1);
-    const float values[16] = {0.4f, 0.2f, 0.05f, 0.5f,  // premultiplied, half covered
-                              0.9f, 0.5f, 0.1f, 1.0f,
-                              1e-5f, 1e-5f, 1e-5f, 1.0f / 65535,
-                              0.001f, 0.002f, 0.0f, 0.004f};
+    const float values[16] = {0.4f,  0.2f,         0.05f,  0.5f,  // premultiplied, half covered
+                              0.9f,  0.5f,         0.1f,   1.0f,   1e-5f, 1e-5f,
+                              1e-5f, 1.0f / 65535, 0.001f, 0.002f, 0.0f,  0.004f};
     std::copy(values, values + 16, image.pixels.begin());
     const fs::path file = test::scratch_dir() / "out.png";
     auto saved = save_image(file, image);
@@ -241,9 +239,9 @@ TEST(ImageIoTest, PngRoundTripMatchesEightBitQuantisation) {
 
 TEST(ImageIoTest, ExrRoundTripKeepsHalfPrecision) {
     ImageRGBA image(3, 2);
-    const float values[24] = {0.1f, 0.333333f, 0.7f, 1.0f,  1.5f, 1000.0f, 0.001f, 0.5f,
-                              0.25f, 0.125f, 0.0625f, 0.25f, 3.14159f, 2.71828f, 0.577f, 1.0f,
-                              0.0f, 0.0f, 0.0f, 0.0f,       1e-3f, 2e-3f, 3e-3f, 0.9f};
+    const float values[24] = {0.1f,  0.333333f, 0.7f,    1.0f,  1.5f,     1000.0f,  0.001f, 0.5f,
+                              0.25f, 0.125f,    0.0625f, 0.25f, 3.14159f, 2.71828f, 0.577f, 1.0f,
+                              0.0f,  0.0f,      0.0f,    0.0f,  1e-3f,    2e-3f,    3e-3f,  0.9f};
     std::copy(values, values + 24, image.pixels.begin());
     const fs::path file = test::scratch_dir() / "out.exr";
     auto saved = save_image(file, image);
@@ -319,9 +317,9 @@ TEST(ImageIoTest, UnsupportedExtensionIsRefused) {
     auto saved = save_image(dir / "out.jpg", ImageRGBA(1, 1));
     ASSERT_FALSE(saved.ok());
     EXPECT_EQ(saved.error().code, ErrorCode::InvalidInput);
-    EXPECT_EQ(saved.error().message,
-              (dir / "out.jpg").string() + ": unsupported output extension \".jpg\" "
-                                           "(supported: .exr, .png)");
+    EXPECT_EQ(saved.error().message, (dir / "out.jpg").string() +
+                                         ": unsupported output extension \".jpg\" "
+                                         "(supported: .exr, .png)");
     EXPECT_TRUE(files_in(dir).empty());
 }
 

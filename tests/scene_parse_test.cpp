@@ -1,13 +1,12 @@
 // Scene parsing: the issue's example parses with resolved paths and defaults; every kind of bad
 // input gives one line naming the file, the JSON path and what is wrong.
 
-#include "scene/scene.hpp"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
 
+#include "scene/scene.hpp"
 #include "test_files.hpp"
 
 namespace acetate {
@@ -29,7 +28,7 @@ constexpr const char* kExample = R"({ "format": "acetate-scene/1",
   "active_floor": 1 })";
 
 class SceneParseTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         dir_ = test::scratch_dir();
         // Only existence is checked at parse time, so the images need no real pixels.
@@ -157,7 +156,8 @@ TEST_F(SceneParseTest, MissingSceneFileIsFileNotFound) {
 }
 
 TEST_F(SceneParseTest, MalformedJsonGivesThePosition) {
-    test::write_text(file(), "{\"format\": \"acetate-scene/1\",\n  \"canvas\": {\"width\": 10,}\n}");
+    test::write_text(file(),
+                     "{\"format\": \"acetate-scene/1\",\n  \"canvas\": {\"width\": 10,}\n}");
     auto result = parse_scene_file(file());
     ASSERT_FALSE(result.ok());
     EXPECT_EQ(result.error().code, ErrorCode::InvalidInput);
@@ -202,12 +202,14 @@ TEST_F(SceneParseTest, MisspeltTileFieldIsNamed) {
     json& tile = scene_["floors"][0]["tiles"][0];
     tile["imgae"] = tile["image"];
     tile.erase("image");
-    EXPECT_EQ(error_message(),
-              expected("floors[0].tiles[0]: unknown field \"imgae\" (allowed: image, rect, masks)"));
+    EXPECT_EQ(
+        error_message(),
+        expected("floors[0].tiles[0]: unknown field \"imgae\" (allowed: image, rect, masks)"));
 }
 
 TEST_F(SceneParseTest, UnknownEffectFieldIsNamed) {
-    scene_["global_effects"] = json::parse(R"([{"plugin": "acetate.bloom", "preset": "high", "qualty": 1}])");
+    scene_["global_effects"] =
+        json::parse(R"([{"plugin": "acetate.bloom", "preset": "high", "qualty": 1}])");
     EXPECT_EQ(error_message(), expected("global_effects[0]: unknown field \"qualty\" "
                                         "(allowed: plugin, params, preset)"));
 }
@@ -233,7 +235,8 @@ TEST_F(SceneParseTest, TileSizeMustBePositive) {
                                         "[x, y, width, height], got 3 elements"));
     SetUp();
     scene_["floors"][1]["tiles"][0]["rect"][0] = "left";
-    EXPECT_EQ(error_message(), expected("floors[1].tiles[0].rect[0]: must be a number, got \"left\""));
+    EXPECT_EQ(error_message(),
+              expected("floors[1].tiles[0].rect[0]: must be a number, got \"left\""));
 }
 
 TEST_F(SceneParseTest, OverflowingNumberIsMalformed) {
@@ -300,8 +303,9 @@ TEST_F(SceneParseTest, FloorsAreRequiredAndNamedUniquely) {
 
 TEST_F(SceneParseTest, MissingImageNamesTheResolvedPath) {
     fs::remove(dir_ / "roof.png");
-    EXPECT_EQ(error_message(ErrorCode::FileNotFound),
-              expected("floors[1].tiles[0].image: file not found: " + (dir_ / "roof.png").string()));
+    EXPECT_EQ(
+        error_message(ErrorCode::FileNotFound),
+        expected("floors[1].tiles[0].image: file not found: " + (dir_ / "roof.png").string()));
 }
 
 TEST_F(SceneParseTest, MissingMaskNamesTheResolvedPath) {
@@ -361,7 +365,9 @@ TEST_F(SceneParseTest, MessagesUseTheFileNameAsGiven) {
     auto result = parse_scene_text(scene_.dump(), "relative/scene.json");
     ASSERT_FALSE(result.ok());
     EXPECT_EQ(result.error().message.rfind("relative/scene.json: floors[0].tiles[0].image: "
-                                           "file not found: /", 0), 0u)
+                                           "file not found: /",
+                                           0),
+              0u)
         << result.error().message;
 }
 

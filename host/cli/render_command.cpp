@@ -86,6 +86,11 @@ int run_render(const RenderCommand& command) {
                 (unsigned long long)load.shaders_compiled,
                 (unsigned long long)load.pipelines_created);
 
+    if (load.tile_texel_violations)
+        std::fprintf(stderr,
+                     "acetate: warning: %s: %llu tile texels have colour at alpha 0 (or NaN/Inf); "
+                     "they are dropped\n",
+                     command.scene.string().c_str(), (unsigned long long)load.tile_texel_violations);
     nlohmann::json frames = nlohmann::json::array();
     const bool several = floors.size() > 1;
     for (size_t i = 0; i < floors.size(); ++i) {

@@ -1,9 +1,8 @@
 #include "core/atomic_file.hpp"
 
 #include <fcntl.h>
-#include <unistd.h>
-
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
@@ -15,13 +14,13 @@ namespace {
 namespace fs = std::filesystem;
 
 Error io_error(const fs::path& file, std::string_view what, int err) {
-    return make_error(ErrorCode::Io, fmt::format("{}: {}: {}", file.string(), what,
-                                                 std::strerror(err)));
+    return make_error(ErrorCode::Io,
+                      fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
 }
 
 // Closes on every path out of the functions below.
 class FileDescriptor {
-public:
+  public:
     explicit FileDescriptor(int fd) : fd_(fd) {}
     ~FileDescriptor() {
         if (fd_ >= 0) ::close(fd_);
@@ -36,7 +35,7 @@ public:
         return result;
     }
 
-private:
+  private:
     int fd_;
 };
 

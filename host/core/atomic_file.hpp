@@ -19,6 +19,7 @@ Result<void> write_file_atomically(const std::filesystem::path& file, std::strin
 
 // Finishes an atomic write whose temporary was produced by another writer: fsyncs `temp` and
 // renames it over `file`. On failure `temp` is removed and the error names `file`.
-Result<void> replace_with_temp(const std::filesystem::path& temp, const std::filesystem::path& file);
+Result<void> replace_with_temp(const std::filesystem::path& temp,
+                               const std::filesystem::path& file);
 
 }  // namespace acetate

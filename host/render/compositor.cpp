@@ -114,7 +114,9 @@ Result<std::unique_ptr<Compositor>> Compositor::load(VulkanContext& context,
     if (out->floor_color_) {
         stages.push_back(Stage::TileToTarget);
         stages.push_back(Stage::Composite);
-        if (options.fill_uncovered) stages.push_back(Stage::FillUncovered);
+        if (options.inject)
+            stages.push_back(options.inject->inside_coverage ? Stage::InjectCovered
+                                                             : Stage::InjectUncovered);
     }
     auto pipelines = HostPipelines::create(context, options.format, stages);
     if (!pipelines) return pipelines.error();
@@ -123,7 +125,8 @@ Result<std::unique_ptr<Compositor>> Compositor::load(VulkanContext& context,
 
     const ResourceCounters used = delta(context.counters(), before);
     out->load_stats_ = {milliseconds_since(start), used.images_loaded, used.targets_allocated,
-                        used.shaders_compiled, used.pipelines_created};
+                        used.shaders_compiled, used.pipelines_created,
+                        out->resources_->tile_texel_violations()};
     return out;
 }
 
@@ -131,11 +134,16 @@ Compositor::~Compositor() {
     if (context_.device()) vkDeviceWaitIdle(context_.device());
 }
 
+Stage Compositor::inject_stage() const {
+    return options_.inject && options_.inject->inside_coverage ? Stage::InjectCovered
+                                                               : Stage::InjectUncovered;
+}
+
 bool Compositor::needs_floor_target() const {
     bool any_effects = false;
     for (const LoadedFloor& f : resources_->floors()) any_effects |= f.geometry.needs_target;
     return any_effects || !options_.plan.draw_direct || view_reads_floor_target(options_.view) ||
-           options_.fill_uncovered.has_value();
+           options_.inject.has_value();
 }
 
 Result<void> Compositor::create_targets(const SceneDesc& scene) {
@@ -223,8 +231,7 @@ Result<void> Compositor::warm_pipelines() {
         if (floor_color_) {
             if (any_tile)
                 draw_one_pixel(cmd, Stage::TileToTarget, *floor_color_, true, any_tile->view());
-            if (options_.fill_uncovered)
-                draw_one_pixel(cmd, Stage::FillUncovered, *floor_color_, true, output_.view());
+            if (options_.inject) draw_one_pixel(cmd, inject_stage(), *floor_color_, true, output_.view());
             draw_one_pixel(cmd, Stage::Composite, accumulation_, true, output_.view());
         }
         accumulation_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -281,7 +288,8 @@ void Compositor::draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor,
         push.canvas[0] = float(width_);
         push.canvas[1] = float(height_);
         push.floor_index = floor;
-        push.mode = options_.view == OutputView::Isolation ? 1u : 0u;
+        push.mode = (options_.view == OutputView::Isolation ? 1u : 0u) |
+                    (tile.one_to_one ? 2u : 0u);
         vkCmdPushConstants(cmd, pipelines_->layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(push), &push);
@@ -333,11 +341,10 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     info.pDepthAttachment = has_depth ? &stencil_info : nullptr;
     vkCmdBeginRendering(cmd, &info);
     draw_tiles(cmd, Stage::TileToTarget, step.floor, step.scissor, report);
-    if (options_.fill_uncovered) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                          pipelines_->pipeline(Stage::FillUncovered));
+    if (options_.inject) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_->pipeline(inject_stage()));
         StagePushConstants push;
-        std::memcpy(push.tint, options_.fill_uncovered->data(), sizeof(push.tint));
+        std::memcpy(push.tint, options_.inject->colour.data(), sizeof(push.tint));
         vkCmdPushConstants(cmd, pipelines_->layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(push), &push);
@@ -448,6 +455,7 @@ Result<FrameStats> Compositor::render(uint32_t active_floor) {
     const ResourceCounters before = context_.counters();
     PlanOptions plan_options = options_.plan;
     if (view_reads_floor_target(options_.view)) plan_options.force_target_floor = active_floor;
+    if (options_.inject) plan_options.draw_direct = false;  // the hook acts like an effect
     last_plan_ = plan_frame(width_, height_, resources_->geometry(), active_floor, plan_options);
 
     FrameStats stats;

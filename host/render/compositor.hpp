@@ -43,10 +43,13 @@ struct CompositorOptions {
     OutputView view = OutputView::Normal;
     PlanOptions plan;                 // optimisations; all on by default
     std::set<std::string> mask_kinds;  // mask kinds some effect needs (composited at load)
-    // Test hook: after a floor's tiles, paint this colour into its target wherever the floor
-    // does NOT cover. Stands in for an effect that breaks the contract, so a test can show the
-    // composite's stencil gate keeps it out of the accumulation. Forces floor targets.
-    std::optional<std::array<float, 4>> fill_uncovered;
+    // Test hook: after a floor's tiles, paint a colour into its target, inside or outside its
+    // coverage, as a contract-breaking effect would. Forces floor targets.
+    struct Injection {
+        std::array<float, 4> colour{0, 0, 0, 0};
+        bool inside_coverage = false;
+    };
+    std::optional<Injection> inject;
 };
 
 class Compositor {
@@ -95,6 +98,7 @@ private:
               VkSampler sampler);
     void set_scissor(VkCommandBuffer cmd, const PixelRect& rect);
     bool needs_floor_target() const;
+    Stage inject_stage() const;
 
     VulkanContext& context_;
     CompositorOptions options_;

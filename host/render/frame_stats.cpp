@@ -31,7 +31,8 @@ nlohmann::json to_json(const LoadStats& s) {
             {"images_loaded", s.images_loaded},
             {"render_targets_allocated", s.targets_allocated},
             {"shaders_compiled", s.shaders_compiled},
-            {"pipelines_created", s.pipelines_created}};
+            {"pipelines_created", s.pipelines_created},
+            {"tile_texel_violations", s.tile_texel_violations}};
 }
 
 nlohmann::json to_json(const TargetInfo& t) {

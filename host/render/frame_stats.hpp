@@ -19,7 +19,7 @@ struct FloorFrameReport {
     PixelRect scissor;
     uint32_t passes = 0;
     uint64_t pixels_shaded = 0;  // sum over this floor's passes of the area they shade
-    uint64_t violations = 0;     // premultiplied-invariant violations counted on the GPU
+    uint64_t violations = 0;     // see FrameStats::violations
 };
 
 struct FrameStats {
@@ -31,7 +31,10 @@ struct FrameStats {
     uint64_t targets_allocated = 0;  // during this frame
     uint64_t shaders_compiled = 0;   // during this frame
     uint64_t pipelines_created = 0;  // during this frame
-    uint64_t violations = 0;     // fragments with a == 0 and rgb != 0, or NaN/Inf
+    // Pixels of floor content reaching the composite with a == 0 but rgb != 0, or NaN/Inf,
+    // counted on the GPU. A floor drawn directly has only its tiles as content, and tile texels
+    // are checked once at load (LoadStats::tile_texel_violations).
+    uint64_t violations = 0;
     std::vector<FloorFrameReport> floors;
 };
 
@@ -41,6 +44,7 @@ struct LoadStats {
     uint64_t targets_allocated = 0;
     uint64_t shaders_compiled = 0;
     uint64_t pipelines_created = 0;
+    uint64_t tile_texel_violations = 0;  // texels with colour at alpha 0 (dropped when drawn)
 };
 
 struct TargetInfo {

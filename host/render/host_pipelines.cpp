@@ -13,7 +13,8 @@ const char* stage_name(Stage stage) {
         case Stage::TileToTarget: return "tile-to-target";
         case Stage::TileToAccum: return "tile-to-accumulation";
         case Stage::Composite: return "composite";
-        case Stage::FillUncovered: return "fill-uncovered";
+        case Stage::InjectCovered: return "inject-covered";
+        case Stage::InjectUncovered: return "inject-uncovered";
         case Stage::Output: return "output";
         case Stage::Count: break;
     }
@@ -39,9 +40,10 @@ StageState state_of(Stage stage) {
             return {"tile.vert", "tile.frag", false, VK_COMPARE_OP_ALWAYS, false, true};
         case Stage::Composite:
             return {"fullscreen.vert", "composite.frag", true, VK_COMPARE_OP_EQUAL, false, true};
-        case Stage::FillUncovered:
-            return {"fullscreen.vert", "fill_uncovered.frag", true, VK_COMPARE_OP_NOT_EQUAL, false,
-                    false};
+        case Stage::InjectCovered:
+            return {"fullscreen.vert", "inject.frag", true, VK_COMPARE_OP_EQUAL, false, false};
+        case Stage::InjectUncovered:
+            return {"fullscreen.vert", "inject.frag", true, VK_COMPARE_OP_NOT_EQUAL, false, false};
         default:
             return {"fullscreen.vert", "output.frag", false, VK_COMPARE_OP_ALWAYS, false, false};
     }

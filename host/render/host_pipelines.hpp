@@ -30,7 +30,8 @@ enum class Stage {
     TileToTarget,   // tile -> floor target; over blend; writes stencil = 1 where it covers
     TileToAccum,    // tile -> accumulation directly (floors without effects); over blend
     Composite,      // floor target -> accumulation; over blend; stencil EQUAL 1
-    FillUncovered,  // test hook: colour -> floor target where stencil != 1
+    InjectCovered,    // test hook: colour -> floor target where stencil == 1
+    InjectUncovered,  // test hook: colour -> floor target where stencil != 1
     Output,         // accumulation -> output image over the background, or a debug view
     Count
 };

@@ -2,12 +2,25 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "scene/image_io.hpp"
 #include "scene/mask_compositor.hpp"
 #include "vulkan/vulkan_context.hpp"
 
 namespace acetate {
 namespace {
+
+uint64_t count_violations(const ImageRGBA& image) {
+    uint64_t count = 0;
+    for (size_t i = 0; i < image.pixels.size(); i += 4) {
+        const float* p = &image.pixels[i];
+        const bool finite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) &&
+                            std::isfinite(p[3]);
+        if (!finite || (p[3] <= 0.0f && (p[0] != 0.0f || p[1] != 0.0f || p[2] != 0.0f))) ++count;
+    }
+    return count;
+}
 
 bool fully_opaque(const ImageRGBA& image) {
     for (size_t i = 3; i < image.pixels.size(); i += 4)
@@ -35,6 +48,7 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
     struct Texture {
         const GpuImage* image;
         bool opaque;
+        uint32_t width, height;
     };
     std::map<std::filesystem::path, Texture> by_path;  // a file shared by tiles loads once
     MaskImages mask_images;
@@ -51,9 +65,11 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
                 auto texture = upload(context, "tile " + tile.image.filename().string(),
                                       pixels.value(), texture_format);
                 if (!texture) return texture.error();
+                out->tile_texel_violations_ += count_violations(pixels.value());
                 found = by_path
-                            .emplace(tile.image,
-                                     Texture{texture.value().get(), fully_opaque(pixels.value())})
+                            .emplace(tile.image, Texture{texture.value().get(),
+                                                         fully_opaque(pixels.value()),
+                                                         pixels->width, pixels->height})
                             .first;
                 out->textures_.push_back(std::move(texture.value()));
             }
@@ -63,6 +79,10 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
             loaded.pixels = pixels_covered(tile.rect.x, tile.rect.y, tile.rect.width,
                                            tile.rect.height, scene.width, scene.height);
             loaded.opaque = found->second.opaque;
+            loaded.one_to_one = tile.rect.width == found->second.width &&
+                                tile.rect.height == found->second.height &&
+                                tile.rect.x == std::floor(tile.rect.x) &&
+                                tile.rect.y == std::floor(tile.rect.y);
             floor.geometry.coverage = bounding_union(floor.geometry.coverage, loaded.pixels);
             if (loaded.opaque && !loaded.pixels.empty()) floor.geometry.opaque.push_back(loaded.pixels);
             floor.tiles.push_back(loaded);

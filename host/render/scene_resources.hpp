@@ -23,6 +23,7 @@ struct LoadedTile {
     SceneRect rect;
     PixelRect pixels;  // pixels it shades on the canvas
     bool opaque = false;  // alpha is 1 at every texel
+    bool one_to_one = false;  // drawn at its own size on whole pixels: texels map to pixels
 };
 
 struct LoadedFloor {
@@ -42,6 +43,9 @@ public:
                                                         const std::set<std::string>& mask_kinds);
 
     const std::vector<LoadedFloor>& floors() const { return floors_; }
+    // Tile texels with a == 0 but rgb != 0, or NaN/Inf, summed over the files loaded. The tile
+    // stage drops them (no colour without coverage), so they are reported here, once.
+    uint64_t tile_texel_violations() const { return tile_texel_violations_; }
     std::vector<FloorGeometry> geometry() const;
     // Every GPU image held (textures and masks), for "what does the host hold" reports.
     std::vector<const GpuImage*> images() const;
@@ -49,6 +53,7 @@ public:
 private:
     std::vector<std::unique_ptr<GpuImage>> textures_;
     std::vector<LoadedFloor> floors_;
+    uint64_t tile_texel_violations_ = 0;
 };
 
 }  // namespace acetate

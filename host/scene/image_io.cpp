@@ -2,7 +2,6 @@
 
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/typedesc.h>
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -99,10 +98,10 @@ Result<void> check_finite(const ImageRGBA& image, const fs::path& file) {
     for (size_t i = 0; i < image.pixels.size(); ++i) {
         if (std::isfinite(image.pixels[i])) continue;
         const size_t pixel = i / 4;
-        return file_error(ErrorCode::ImageDecode, file,
-                          fmt::format("pixel ({}, {}) channel {} is {}; images must be finite",
-                                      pixel % image.width, pixel / image.width, i % 4,
-                                      image.pixels[i]));
+        return file_error(
+            ErrorCode::ImageDecode, file,
+            fmt::format("pixel ({}, {}) channel {} is {}; images must be finite",
+                        pixel % image.width, pixel / image.width, i % 4, image.pixels[i]));
     }
     return {};
 }
@@ -113,13 +112,15 @@ void to_linear_premultiplied(DecodedPixels& decoded) {
     // first so the sRGB curve sees the stored colour.
     const bool undo_encoded_premultiply =
         decoded.integer_format && decoded.has_alpha && !decoded.straight_alpha;
-    const bool premultiply = decoded.has_alpha && (decoded.integer_format || decoded.straight_alpha);
+    const bool premultiply =
+        decoded.has_alpha && (decoded.integer_format || decoded.straight_alpha);
     std::vector<float>& px = decoded.image.pixels;
     for (size_t i = 0; i < px.size(); i += 4) {
         const float alpha = px[i + 3];
         for (size_t c = 0; c < 3; ++c) {
             float value = px[i + c];
-            if (undo_encoded_premultiply) value = alpha > 0.0f ? std::min(value / alpha, 1.0f) : 0.0f;
+            if (undo_encoded_premultiply)
+                value = alpha > 0.0f ? std::min(value / alpha, 1.0f) : 0.0f;
             if (decoded.integer_format) value = srgb_to_linear(value);
             if (premultiply) value *= alpha;
             px[i + c] = value;
@@ -135,8 +136,9 @@ bool has_extension(const fs::path& file, std::string_view wanted) {
 }
 
 // Writes all pixels of one image with OpenImageIO; `pixels` are in `pixel_type`.
-Result<void> write_with_oiio(const fs::path& temp, const fs::path& file, const OIIO::ImageSpec& spec,
-                             OIIO::TypeDesc pixel_type, const void* pixels) {
+Result<void> write_with_oiio(const fs::path& temp, const fs::path& file,
+                             const OIIO::ImageSpec& spec, OIIO::TypeDesc pixel_type,
+                             const void* pixels) {
     auto output = OIIO::ImageOutput::create(temp.string());
     if (!output) return file_error(ErrorCode::ImageEncode, file, OIIO::geterror());
     if (!output->open(temp.string(), spec) || !output->write_image(pixel_type, pixels) ||
@@ -207,7 +209,7 @@ Result<ImageRGBA> load_image(const fs::path& file, ImageRole role) {
     if (!decoded) return decoded.error();
     ACETATE_TRY(check_finite(decoded->image, file));
     // Masks are data (water depth, roughness...): values stay as stored.
-    to_linear_premultiplied(*decoded);
+    if (role == ImageRole::Colour) to_linear_premultiplied(*decoded);
     return std::move(decoded->image);
 }
 

@@ -49,25 +49,33 @@ std::string json_quoted(std::string_view text) {
 // nlohmann_json keeps the last of two equal keys without a word; a scene with "rect" written
 // twice would silently lose one. This parser callback remembers the first duplicate and where.
 class DuplicateKeyFinder {
-public:
+  public:
     bool on_event(json::parse_event_t event, const json& parsed) {
         using E = json::parse_event_t;
         switch (event) {
-            case E::object_start: stack_.push_back({true}); break;
-            case E::array_start: stack_.push_back({false}); break;
-            case E::key: on_key(parsed.get<std::string>()); break;
+            case E::object_start:
+                stack_.push_back({true});
+                break;
+            case E::array_start:
+                stack_.push_back({false});
+                break;
+            case E::key:
+                on_key(parsed.get<std::string>());
+                break;
             case E::object_end:
             case E::array_end:
                 stack_.pop_back();
                 element_done();
                 break;
-            case E::value: element_done(); break;
+            case E::value:
+                element_done();
+                break;
         }
         return true;
     }
     const std::optional<std::pair<std::string, std::string>>& found() const { return found_; }
 
-private:
+  private:
     struct Frame {
         bool object;
         std::set<std::string> keys{};
@@ -97,13 +105,13 @@ private:
 };
 
 class SceneReader {
-public:
+  public:
     SceneReader(std::string label, fs::path base_dir)
         : label_(std::move(label)), base_dir_(std::move(base_dir)) {}
 
     SceneDesc read(const json& root, const fs::path& file);
 
-private:
+  private:
     [[noreturn]] void fail(const std::string& path, const std::string& what,
                            ErrorCode code = ErrorCode::InvalidInput) const {
         const std::string message = path.empty() ? fmt::format("{}: {}", label_, what)
@@ -149,7 +157,8 @@ void SceneReader::expect_object(const json& value, const std::string& path,
     for (const auto& [key, unused] : value.items()) {
         if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
         std::string names;
-        for (std::string_view name : allowed) names += (names.empty() ? "" : ", ") + std::string(name);
+        for (std::string_view name : allowed)
+            names += (names.empty() ? "" : ", ") + std::string(name);
         fail(path, fmt::format("unknown field {} (allowed: {})", json_quoted(key), names));
     }
 }
@@ -195,8 +204,8 @@ float SceneReader::float_at_least(const json& value, const std::string& path, fl
     const float number = finite_float(value, path);
     if (inclusive ? number >= min : number > min) return number;
     const std::string subject = what.empty() ? "must be" : fmt::format("{} must be", what);
-    fail(path, fmt::format("{} {} {}, got {}", subject, inclusive ? ">=" : ">", min,
-                           describe(value)));
+    fail(path,
+         fmt::format("{} {} {}, got {}", subject, inclusive ? ">=" : ">", min, describe(value)));
 }
 
 int64_t SceneReader::integer(const json& value, const std::string& path) const {
@@ -262,8 +271,7 @@ SceneDesc SceneReader::read(const json& root, const fs::path& file) {
     return scene;
 }
 
-void SceneReader::read_canvas(const json& canvas, const std::string& path,
-                              SceneDesc& scene) const {
+void SceneReader::read_canvas(const json& canvas, const std::string& path, SceneDesc& scene) const {
     expect_object(canvas, path, {"width", "height", "background"});
     scene.width = canvas_side(required(canvas, path, "width"), field_path(path, "width"));
     scene.height = canvas_side(required(canvas, path, "height"), field_path(path, "height"));
@@ -363,8 +371,8 @@ LightDesc SceneReader::read_light(const json& light, const std::string& path) co
     const std::string pos_path = field_path(path, "pos");
     const json& pos = array_of(required(light, path, "pos"), pos_path, 2, "2 numbers [x, y]");
     for (size_t i = 0; i < 2; ++i) desc.pos[i] = finite_float(pos[i], item_path(pos_path, i));
-    desc.radius = float_at_least(required(light, path, "radius"), field_path(path, "radius"),
-                                 0.0f, false);
+    desc.radius =
+        float_at_least(required(light, path, "radius"), field_path(path, "radius"), 0.0f, false);
     if (const json* color = optional(light, "color")) {
         const std::string color_path = field_path(path, "color");
         array_of(*color, color_path, 3, "3 numbers [r, g, b]");
@@ -406,8 +414,8 @@ uint32_t SceneReader::read_active_floor(const json* value, size_t floor_count) c
     const int64_t index = integer(*value, "active_floor");
     if (index < 0) fail("active_floor", "must be >= 0, got " + describe(*value));
     if (uint64_t(index) >= floor_count)
-        fail("active_floor", fmt::format("must be < {} (the number of floors), got {}",
-                                         floor_count, describe(*value)));
+        fail("active_floor", fmt::format("must be < {} (the number of floors), got {}", floor_count,
+                                         describe(*value)));
     return uint32_t(index);
 }
 
@@ -436,13 +444,13 @@ Result<SceneDesc> parse_scene_text(const std::string& text, const fs::path& file
         });
     } catch (const json::exception& e) {
         // parse_error carries the line and column; out_of_range is a number too large to hold.
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: malformed JSON: {}", label, one_line_parse_message(e.what())));
+        return make_error(ErrorCode::InvalidInput, fmt::format("{}: malformed JSON: {}", label,
+                                                               one_line_parse_message(e.what())));
     }
     if (const auto& dup = duplicates.found()) {
         const std::string where = dup->first.empty() ? "" : dup->first + ": ";
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: {}duplicate field {}", label, where, json_quoted(dup->second)));
+        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}duplicate field {}", label,
+                                                               where, json_quoted(dup->second)));
     }
 
     std::error_code ec;
@@ -462,8 +470,8 @@ Result<SceneDesc> parse_scene_file(const fs::path& file) {
     const fs::file_status status = fs::status(file, ec);
     if (!fs::exists(status)) {
         const fs::path shown = fs::absolute(file, ec);
-        return make_error(ErrorCode::FileNotFound,
-                          fmt::format("{}: file not found: {}", label, (ec ? file : shown).string()));
+        return make_error(ErrorCode::FileNotFound, fmt::format("{}: file not found: {}", label,
+                                                               (ec ? file : shown).string()));
     }
     if (!fs::is_regular_file(status))
         return make_error(ErrorCode::InvalidInput, fmt::format("{}: not a regular file", label));

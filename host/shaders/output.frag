@@ -1,8 +1,8 @@
 #version 450
 // Accumulation -> output image, with the debug views of seed 000's AlphaValidator.
 layout(push_constant) uniform Push {
-    vec4 background;    // straight-alpha linear background colour
     vec4 unused;
+    vec4 background;    // straight-alpha linear background colour
     vec2 canvas;
     uint view;          // see OutputView in render/compositor.hpp
     uint pad;

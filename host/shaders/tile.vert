@@ -6,7 +6,7 @@ layout(push_constant) uniform Push {
     vec4 tint;          // isolation-view tint (rgb), used when tint_mode == 1
     vec2 canvas;        // canvas size in pixels
     uint floor_index;   // slot in the violation counters
-    uint tint_mode;     // 0 = draw as is, 1 = isolation tint
+    uint mode;          // see tile.frag
 } pc;
 layout(location = 0) out vec2 uv;
 void main() {
