@@ -53,14 +53,21 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
     std::map<std::filesystem::path, Texture> by_path;  // a file shared by tiles loads once
     MaskImages mask_images;
 
-    for (const FloorDesc& floor_desc : scene.floors) {
+    // Errors name the scene field that refers to the file, not only the file.
+    auto in_scene = [&](const Error& e, size_t f, size_t t, const std::string& field) {
+        return make_error(e.code, fmt::format("{}: floors[{}].tiles[{}].{}: {}",
+                                              scene.file.string(), f, t, field, e.message));
+    };
+    for (size_t f = 0; f < scene.floors.size(); ++f) {
+        const FloorDesc& floor_desc = scene.floors[f];
         LoadedFloor floor;
         floor.name = floor_desc.name;
-        for (const TileDesc& tile : floor_desc.tiles) {
+        for (size_t t = 0; t < floor_desc.tiles.size(); ++t) {
+            const TileDesc& tile = floor_desc.tiles[t];
             auto found = by_path.find(tile.image);
             if (found == by_path.end()) {
                 auto pixels = load_image(tile.image, ImageRole::Colour);
-                if (!pixels) return pixels.error();
+                if (!pixels) return in_scene(pixels.error(), f, t, "image");
                 ++context.counters().images_loaded;
                 auto texture = upload(context, "tile " + tile.image.filename().string(),
                                       pixels.value(), texture_format);
@@ -90,7 +97,7 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
             for (const auto& [kind, path] : tile.masks) {
                 if (!mask_kinds.count(kind) || mask_images.count(path)) continue;
                 auto mask = load_image(path, ImageRole::Mask);
-                if (!mask) return mask.error();
+                if (!mask) return in_scene(mask.error(), f, t, "masks." + kind);
                 ++context.counters().images_loaded;
                 mask_images.emplace(path, std::move(mask.value()));
             }

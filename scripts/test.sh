@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# The test command: set everything up from nothing, build, and run the whole suite with ctest
+# (Vulkan validation layers on; any validation message fails a test).
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${ACETATE_BUILD_DIR:-$root/build}
+bash "$root/scripts/setup.sh"
+echo "== Running the tests"
+cd "$build"
+ctest --output-on-failure -j"$(nproc)" "$@"
