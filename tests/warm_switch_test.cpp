@@ -64,3 +64,34 @@ TEST_F(WarmSwitch, LoadReportsWhatItPrepared) {
 
 }  // namespace
 }  // namespace acetate::test
+
+namespace acetate::test {
+namespace {
+
+TEST(Shutdown, LeavesNoVulkanObjectBehind) {
+    // The validation layer reports every object still alive when the device and instance are
+    // destroyed; a context of its own lets this test see those reports.
+    const uint64_t before = VulkanContext::process_validation_message_count();
+    {
+        ContextOptions options;
+        options.validation = true;
+        auto context = VulkanContext::create(options);
+        ASSERT_TRUE(context.ok()) << context.error().message;
+        SceneDesc scene;
+        scene.file = std::filesystem::temp_directory_path() / "acetate-shutdown-scene.json";
+        scene.width = 8;
+        scene.height = 8;
+        scene.floors.resize(2);
+        scene.floors[0].name = "a";
+        scene.floors[1].name = "b";
+        CompositorOptions compositor_options;
+        compositor_options.view = OutputView::FloorAlpha;  // floor target and stencil too
+        auto compositor = Compositor::load(*context.value(), scene, compositor_options);
+        ASSERT_TRUE(compositor.ok()) << compositor.error().message;
+        ASSERT_TRUE((*compositor)->render(1).ok());
+    }
+    EXPECT_EQ(VulkanContext::process_validation_message_count(), before);
+}
+
+}  // namespace
+}  // namespace acetate::test

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -37,7 +38,11 @@ int device_type_rank(VkPhysicalDeviceType type) {
     }
 }
 
+std::atomic<uint64_t> g_validation_messages{0};
+
 }  // namespace
+
+uint64_t VulkanContext::process_validation_message_count() { return g_validation_messages.load(); }
 
 ContextOptions ContextOptions::from_environment() {
     ContextOptions options;
@@ -73,6 +78,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::on_validation_message(
     VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
     const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
     if (severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return VK_FALSE;
+    ++g_validation_messages;
     auto* self = static_cast<VulkanContext*>(user);
     self->messages_.emplace_back(data->pMessage ? data->pMessage : "(no message)");
     std::fprintf(stderr, "acetate: vulkan validation: %s\n", self->messages_.back().c_str());

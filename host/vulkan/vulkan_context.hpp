@@ -60,6 +60,9 @@ public:
 
     // Validation messages (warnings and errors) seen since creation; tests require none.
     const std::vector<std::string>& validation_messages() const { return messages_; }
+    // Validation messages seen by every context of this process, including those reported
+    // while a context is destroyed (leaked objects are reported by vkDestroyDevice).
+    static uint64_t process_validation_message_count();
     bool validation_enabled() const { return validation_; }
 
     ResourceCounters& counters() { return counters_; }
