@@ -191,3 +191,38 @@ TEST_F(CompositeGate, DebugViewsShowAlphaOfFloorAndAccumulation) {
 
 }  // namespace
 }  // namespace acetate::test
+
+namespace acetate::test {
+namespace {
+
+TEST_F(CompositeGate, FloorViewOfAnEmptyFloorShowsNothingOfTheFloorsBelow) {
+    SceneDesc scene = make_scene(16, 16, {0, 0, 0, 1});
+    const uint32_t ground = add_floor(scene, "ground");
+    add_tile(scene, ground, solid(16, 16, {0.5f, 0.5f, 0.5f, 1}), {0, 0, 16, 16});
+    const uint32_t empty = add_floor(scene, "empty");  // no tiles at all
+    CompositorOptions options;
+    options.view = OutputView::FloorAlpha;
+    options.plan.draw_direct = false;  // the ground goes through the shared floor target
+    auto compositor = load(scene, options);
+    ASSERT_TRUE(compositor);
+    const ImageRGBA out = render(*compositor, empty);
+    expect_pixel(out, 8, 8, {0, 0, 0, 1}, 0, "the empty floor's alpha");
+}
+
+TEST_F(CompositeGate, ColourOutsideCoverageIsNotCountedBecauseTheGateDropsIt) {
+    SceneDesc scene = make_scene(16, 16, {0, 0, 0, 1});
+    const uint32_t ground = add_floor(scene, "ground");
+    add_tile(scene, ground, solid(4, 4, {0.5f, 0.5f, 0.5f, 1}), {6, 6, 4, 4});
+    CompositorOptions options;
+    options.inject = CompositorOptions::Injection{{0.25f, 0, 0, 0}, false};  // outside coverage
+    options.plan.scissor_to_coverage = false;  // the composite runs over the whole canvas
+    auto compositor = load(scene, options);
+    ASSERT_TRUE(compositor);
+    FrameStats stats;
+    const ImageRGBA out = render(*compositor, ground, &stats);
+    EXPECT_EQ(stats.violations, 0u) << "fragments the stencil rejects never ran the shader";
+    expect_pixel(out, 0, 0, {0, 0, 0, 1}, 0, "nothing reached the accumulation");
+}
+
+}  // namespace
+}  // namespace acetate::test

@@ -2,6 +2,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <charconv>
+#include <cstdio>
+
 #include "cli/render_command.hpp"
 
 int main(int argc, char** argv) {
@@ -34,16 +37,19 @@ int main(int argc, char** argv) {
             while (start <= floors_list.size()) {
                 const size_t comma = floors_list.find(',', start);
                 const std::string item = floors_list.substr(start, comma - start);
-                size_t used = 0;
-                const unsigned long value = std::stoul(item, &used);
-                if (used != item.size()) throw std::invalid_argument(item);
-                render.floors.push_back(uint32_t(value));
+                uint32_t value = 0;
+                const auto [end, error] =
+                    std::from_chars(item.data(), item.data() + item.size(), value);
+                if (error != std::errc() || end != item.data() + item.size() || item.empty())
+                    throw std::invalid_argument(item);
+                render.floors.push_back(value);
                 if (comma == std::string::npos) break;
                 start = comma + 1;
             }
         }
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help exits 0; every usage error exits 2 (docs/conventions.md, exit codes).
+        return app.exit(e) == 0 ? 0 : 2;
     } catch (const std::exception&) {
         std::fprintf(stderr, "acetate: --floors: expected floor indices like 0,1,2,1, got \"%s\"\n",
                      floors_list.c_str());

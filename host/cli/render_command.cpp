@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cstdio>
 
 #include "core/atomic_file.hpp"
@@ -49,7 +50,8 @@ std::filesystem::path frame_output_path(const std::filesystem::path& output, uin
 }
 
 int run_render(const RenderCommand& command) {
-    const std::string ext = command.output.extension().string();
+    std::string ext = command.output.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".exr" && ext != ".png")
         return fail(fmt::format("-o {}: the output must end in .exr or .png",
                                 command.output.string()));

@@ -19,7 +19,8 @@ struct RenderCommand {
 };
 
 // Runs the command; prints progress to stdout and one-line errors to stderr. Returns the exit
-// status: 0 on success, 1 on bad input or a failure of the environment.
+// status: 0 on success, 1 on bad input or a failure of the environment (usage errors caught
+// by the argument parser exit 2, in main.cpp).
 int run_render(const RenderCommand& command);
 
 // The file a frame of floor `floor` goes to: OUT itself for a single frame, else OUT with the

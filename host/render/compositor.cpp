@@ -367,11 +367,10 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
         vkCmdPushConstants(cmd, pipelines_->layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(push), &push);
-        const PixelRect all{0, 0, int64_t(width_), int64_t(height_)};
-        set_scissor(cmd, all);
+        set_scissor(cmd, step.scissor);  // like any pass: inside the render area
         vkCmdDraw(cmd, 3, 1, 0, 0);
         ++report.passes;
-        report.pixels_shaded += all.area();
+        report.pixels_shaded += step.scissor.area();
     }
     vkCmdEndRendering(cmd);
 
@@ -435,12 +434,6 @@ void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameS
     vkCmdClearColorImage(cmd, accumulation_.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
                          1, &range);
     const bool floor_view = view_reads_floor_target(options_.view);
-    if (floor_view) {
-        // The view reads the active floor's target even where this frame draws nothing.
-        floor_color_->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        vkCmdClearColorImage(cmd, floor_color_->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                             &zero, 1, &range);
-    }
     for (const FloorStep& step : plan.steps) {
         FloorFrameReport report;
         report.floor = step.floor;
@@ -455,6 +448,13 @@ void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameS
         stats.passes += report.passes;
         stats.pixels_shaded += report.pixels_shaded;
         stats.floors.push_back(report);
+    }
+    if (floor_view && plan.steps.back().path != FloorPath::ThroughTarget) {
+        // The active floor drew nothing (it covers no pixel), so its target must read as empty,
+        // not as whatever a lower floor left in the shared target.
+        floor_color_->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        vkCmdClearColorImage(cmd, floor_color_->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                             &zero, 1, &range);
     }
     record_output(cmd, stats);
 }

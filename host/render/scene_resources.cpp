@@ -71,7 +71,7 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
                 ++context.counters().images_loaded;
                 auto texture = upload(context, "tile " + tile.image.filename().string(),
                                       pixels.value(), texture_format);
-                if (!texture) return texture.error();
+                if (!texture) return in_scene(texture.error(), f, t, "image");
                 out->tile_texel_violations_ += count_violations(pixels.value());
                 found = by_path
                             .emplace(tile.image, Texture{texture.value().get(),

@@ -24,7 +24,7 @@ struct ImageRGBA {
 enum class ImageRole {
     Colour,  // integer formats are sRGB-decoded; straight alpha is premultiplied after decoding;
              // associated-alpha files (EXR) are taken as they are
-    Mask,    // data: no colour decode, no premultiplication; values scaled to [0, 1]
+    Mask,    // data: no colour decode, no premultiplication; integer formats scaled to [0, 1]
 };
 
 // Loads PNG, JPEG, WebP, TIFF, EXR (anything OpenImageIO reads). Images without alpha get

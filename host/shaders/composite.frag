@@ -11,6 +11,9 @@ layout(push_constant) uniform Push {
 layout(set = 0, binding = 0) uniform sampler2D floor_color;
 layout(set = 0, binding = 2) buffer Violations { uint count[]; } violations;
 layout(location = 0) out vec4 color;
+// The stencil test must run before this shader, or fragments the gate rejects would still be
+// counted as violations by the atomic below.
+layout(early_fragment_tests) in;
 
 void main() {
     vec4 c = texelFetch(floor_color, ivec2(gl_FragCoord.xy), 0);

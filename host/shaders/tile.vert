@@ -3,7 +3,7 @@
 // Vulkan's framebuffer y also points down, so scene space maps to NDC without a flip.
 layout(push_constant) uniform Push {
     vec4 rect;          // x, y, width, height in scene pixels
-    vec4 tint;          // isolation-view tint (rgb), used when tint_mode == 1
+    vec4 tint;          // isolation-view tint (rgb), used when bit 0 of mode is set
     vec2 canvas;        // canvas size in pixels
     uint floor_index;   // slot in the violation counters
     uint mode;          // see tile.frag

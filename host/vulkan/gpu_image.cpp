@@ -3,6 +3,7 @@
 #include <Imath/half.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "vulkan/vulkan_context.hpp"
@@ -251,7 +252,10 @@ Result<void> upload_image(VulkanContext& context, GpuImage& image, const ImageRG
             break;
         case VK_FORMAT_R16G16B16A16_SFLOAT: {
             auto* dst = static_cast<uint16_t*>(staging->mapped());
-            for (size_t i = 0; i < count; ++i) dst[i] = Imath::half(src[i]).bits();
+            // Finite values beyond the half range would become Inf; the contract allows none,
+            // so they saturate at +-65504 (the largest half).
+            for (size_t i = 0; i < count; ++i)
+                dst[i] = Imath::half(std::clamp(src[i], -65504.0f, 65504.0f)).bits();
             break;
         }
         case VK_FORMAT_R8G8B8A8_UNORM: {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -152,10 +153,12 @@ Result<void> VulkanContext::pick_device(const std::string& selector) {
     }
     int chosen = -1;
     if (!selector.empty()) {
-        const bool numeric = std::all_of(selector.begin(), selector.end(), ::isdigit);
+        uint64_t index = 0;
+        const auto [end, error] =
+            std::from_chars(selector.data(), selector.data() + selector.size(), index);
+        const bool numeric = error == std::errc() && end == selector.data() + selector.size();
         for (size_t i = 0; i < devices.size() && chosen < 0; ++i) {
-            if (numeric ? std::stoul(selector) == i
-                        : lower(names[i]).find(lower(selector)) != std::string::npos)
+            if (numeric ? index == i : lower(names[i]).find(lower(selector)) != std::string::npos)
                 chosen = int(i);
         }
         if (chosen < 0) {

@@ -18,7 +18,8 @@ struct ContextOptions {
     // Default: the environment variable ACETATE_VALIDATION=1.
     bool validation = false;
     // Picks the device by index ("1") or case-insensitive name substring ("llvmpipe").
-    // Default: ACETATE_DEVICE; empty = a discrete GPU if present, else the first other device.
+    // Default: ACETATE_DEVICE; empty = the first device of the best type: discrete GPU, then
+    // integrated, virtual, CPU (lavapipe).
     std::string device_selector;
 
     static ContextOptions from_environment();
