@@ -54,7 +54,7 @@ TEST_F(OddSize, CanvasAtTheDeviceMaximumRendersAndAboveItFailsClearly) {
     EXPECT_EQ(out.at(max_dim - 5, 1)[0], 0.0f);
 
     scene.width = max_dim + 1;
-    auto refused = Compositor::load(context(), scene, {});
+    auto refused = Compositor::load(renderer(), scene, {});
     ASSERT_FALSE(refused.ok());
     EXPECT_EQ(refused.error().code, ErrorCode::DeviceLimit);
     EXPECT_NE(refused.error().message.find("canvas"), std::string::npos) << refused.error().message;

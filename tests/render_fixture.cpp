@@ -24,6 +24,26 @@ VulkanContext& RenderTest::context() {
     return *shared;
 }
 
+Renderer& RenderTest::renderer() {
+    static std::unique_ptr<Renderer> shared = [] {
+        RendererOptions options;
+#ifdef ACETATE_PLUGIN_DIR
+        options.plugin_directories.push_back(ACETATE_PLUGIN_DIR);
+#endif
+#ifdef ACETATE_TEST_PLUGIN_DIR
+        options.plugin_directories.push_back(ACETATE_TEST_PLUGIN_DIR);
+#endif
+        auto created = Renderer::create(context(), options);
+        if (!created) {
+            std::fprintf(stderr, "cannot create the renderer: %s\n",
+                         created.error().message.c_str());
+            std::abort();
+        }
+        return std::move(created.value());
+    }();
+    return *shared;
+}
+
 void RenderTest::SetUp() {
     messages_before_ = context().validation_messages().size();
     dir_ = scratch_dir();
@@ -63,7 +83,7 @@ void RenderTest::add_tile(SceneDesc& scene, uint32_t floor, const ImageRGBA& ima
 }
 
 std::unique_ptr<Compositor> RenderTest::load(const SceneDesc& scene, CompositorOptions options) {
-    auto loaded = Compositor::load(context(), scene, options);
+    auto loaded = Compositor::load(renderer(), scene, options);
     if (!loaded) {
         ADD_FAILURE() << "load failed: " << loaded.error().message;
         return nullptr;

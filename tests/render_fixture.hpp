@@ -9,6 +9,7 @@
 #include <string>
 
 #include "render/compositor.hpp"
+#include "render/renderer.hpp"
 #include "scene/image_io.hpp"
 #include "scene/scene.hpp"
 #include "vulkan/vulkan_context.hpp"
@@ -21,6 +22,8 @@ protected:
     void TearDown() override;
 
     static VulkanContext& context();
+    // Process-wide, like the CLI's: plugins from the build tree and the test plugins.
+    static Renderer& renderer();
     // This test's scratch folder (created fresh in SetUp).
     const std::filesystem::path& dir() const { return dir_; }
 

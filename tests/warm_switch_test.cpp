@@ -50,8 +50,12 @@ TEST_F(WarmSwitch, LoadReportsWhatItPrepared) {
     add_tile(scene, floor, solid(16, 16, {0.5f, 0.5f, 0.5f, 1}), {0, 0, 16, 16});
     add_tile(scene, floor, solid(16, 16, {0.5f, 0.5f, 0.5f, 1}), {0, 0, 8, 8});
     scene.floors[floor].tiles[1].image = scene.floors[floor].tiles[0].image;  // same file twice
-    auto compositor = load(scene);
-    ASSERT_TRUE(compositor);
+    // A renderer of its own: its pipeline pool starts empty, whatever ran before in-process.
+    auto fresh = Renderer::create(context(), {});
+    ASSERT_TRUE(fresh.ok()) << fresh.error().message;
+    auto loaded = Compositor::load(*fresh.value(), scene, {});
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    auto& compositor = loaded.value();
     const LoadStats& load_stats = compositor->load_stats();
     EXPECT_EQ(load_stats.images_loaded, 1u) << "a file shared by two tiles loads once";
     // A scene without effects needs only the accumulation and the output: no floor target.
@@ -86,7 +90,9 @@ TEST(Shutdown, LeavesNoVulkanObjectBehind) {
         scene.floors[1].name = "b";
         CompositorOptions compositor_options;
         compositor_options.view = OutputView::FloorAlpha;  // floor target and stencil too
-        auto compositor = Compositor::load(*context.value(), scene, compositor_options);
+        auto renderer = Renderer::create(*context.value(), {});
+        ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+        auto compositor = Compositor::load(*renderer.value(), scene, compositor_options);
         ASSERT_TRUE(compositor.ok()) << compositor.error().message;
         ASSERT_TRUE((*compositor)->render(1).ok());
     }

@@ -14,7 +14,9 @@ int main(int argc, char** argv) {
     acetate::RenderCommand render;
     std::string floors_list;
     CLI::App* cmd = app.add_subcommand("render", "Render a scene to an image");
-    cmd->add_option("scene", render.scene, "Scene file (acetate-scene/1 JSON)")->required();
+    cmd->add_option("scenes", render.scenes,
+                    "Scene files (acetate-scene/1 JSON), rendered in turn in one process")
+        ->required();
     cmd->add_option("-o,--output", render.output, "Output image: .exr (half, premultiplied, "
                                                   "linear) or .png (8-bit sRGB, straight alpha)")
         ->required();
@@ -29,6 +31,13 @@ int main(int argc, char** argv) {
     cmd->add_option("--format", render.format, "Render target format: rgba16f | rgba32f")
         ->default_val("rgba16f");
     cmd->add_option("--stats", render.stats, "Write load and per-frame statistics as JSON");
+    cmd->add_option("--plugin-path", render.plugin_paths,
+                    "Directory to search for effect plugins first (repeatable); then "
+                    "ACETATE_PLUGIN_PATH, then the installation's lib/acetate/plugins");
+    cmd->add_option("--time", render.time, "Time in seconds that effects animate with")
+        ->default_val(0.0f);
+    cmd->add_flag("!--no-pipeline-cache", render.pipeline_cache,
+                  "Do not read or write the pipeline cache in the user cache directory");
 
     try {
         app.parse(argc, argv);

@@ -6,9 +6,12 @@
 #include <cstdio>
 
 #include "core/atomic_file.hpp"
+#include "plugins/plugin_loader.hpp"
 #include "render/compositor.hpp"
+#include "render/renderer.hpp"
 #include "scene/image_io.hpp"
 #include "scene/scene.hpp"
+#include "vulkan/pipeline_cache_file.hpp"
 #include "vulkan/vulkan_context.hpp"
 
 namespace acetate {
@@ -24,29 +27,22 @@ int fail(const std::string& message) {
     return 1;
 }
 
-// Effects arrive with the plugin runtime; until then a scene that names one is refused rather
-// than rendered without it.
-Result<void> refuse_effects(const SceneDesc& scene) {
-    std::vector<const EffectRef*> refs;
-    for (const FloorDesc& f : scene.floors)
-        for (const EffectRef& e : f.effects) refs.push_back(&e);
-    for (const EffectRef& e : scene.global_effects) refs.push_back(&e);
-    if (refs.empty()) return {};
-    return make_error(ErrorCode::InvalidInput,
-                      fmt::format("{}: {}.plugin: cannot load plugin \"{}\": this build has no "
-                                  "plugin runtime yet",
-                                  scene.file.string(), refs.front()->where, refs.front()->plugin));
+std::filesystem::path with_suffix(const std::filesystem::path& output, const std::string& suffix) {
+    std::filesystem::path p = output;
+    p.replace_filename(output.stem().string() + suffix + output.extension().string());
+    return p;
 }
 
 }  // namespace
 
 std::filesystem::path frame_output_path(const std::filesystem::path& output, uint32_t floor,
                                         bool several) {
-    if (!several) return output;
-    std::filesystem::path p = output;
-    p.replace_filename(fmt::format("{}.floor{}{}", output.stem().string(), floor,
-                                   output.extension().string()));
-    return p;
+    return several ? with_suffix(output, fmt::format(".floor{}", floor)) : output;
+}
+
+std::filesystem::path scene_output_path(const std::filesystem::path& output, size_t scene,
+                                        bool several) {
+    return several ? with_suffix(output, fmt::format(".scene{}", scene)) : output;
 }
 
 int run_render(const RenderCommand& command) {
@@ -63,69 +59,96 @@ int run_render(const RenderCommand& command) {
     else if (command.format == "rgba32f") options.format = VK_FORMAT_R32G32B32A32_SFLOAT;
     else return fail(fmt::format("--format: expected rgba16f or rgba32f, got \"{}\"", command.format));
 
-    auto scene = parse_scene_file(command.scene);
-    if (!scene) return fail(scene.error());
-    if (auto refused = refuse_effects(scene.value()); !refused) return fail(refused.error());
-
-    std::vector<uint32_t> floors = command.floors;
-    if (floors.empty()) floors.push_back(command.floor.value_or(scene->active_floor));
-    for (uint32_t f : floors)
-        if (f >= scene->floors.size())
-            return fail(fmt::format("{}: floor {} does not exist (the scene has floors 0..{})",
-                                    command.floors.empty() ? "--floor" : "--floors", f,
-                                    scene->floors.size() - 1));
+    // Every scene is parsed and checked before the device starts: bad input fails fast.
+    std::vector<SceneDesc> scenes;
+    for (const auto& file : command.scenes) {
+        auto scene = parse_scene_file(file);
+        if (!scene) return fail(scene.error());
+        for (uint32_t f : command.floors)
+            if (f >= scene->floors.size())
+                return fail(fmt::format("--floors: floor {} does not exist in {} (floors 0..{})",
+                                        f, file.string(), scene->floors.size() - 1));
+        if (command.floor && *command.floor >= scene->floors.size())
+            return fail(fmt::format("--floor: floor {} does not exist in {} (floors 0..{})",
+                                    *command.floor, file.string(), scene->floors.size() - 1));
+        scenes.push_back(std::move(scene.value()));
+    }
 
     auto context = VulkanContext::create(ContextOptions::from_environment());
     if (!context) return fail(context.error());
     std::printf("device: %s\n", (*context)->device_name().c_str());
+    RendererOptions renderer_options;
+    renderer_options.plugin_directories = PluginLoader::default_directories(command.plugin_paths);
+    if (command.pipeline_cache) renderer_options.pipeline_cache_file = default_pipeline_cache_path();
+    auto renderer = Renderer::create(*context.value(), renderer_options);
+    if (!renderer) return fail(renderer.error());
 
-    auto compositor = Compositor::load(*context.value(), scene.value(), options);
-    if (!compositor) return fail(compositor.error());
-    const LoadStats& load = (*compositor)->load_stats();
-    std::printf("loaded %s in %.1f ms: %llu images, %llu targets, %llu shaders, %llu pipelines\n",
-                command.scene.string().c_str(), load.milliseconds,
-                (unsigned long long)load.images_loaded, (unsigned long long)load.targets_allocated,
-                (unsigned long long)load.shaders_compiled,
-                (unsigned long long)load.pipelines_created);
+    nlohmann::json scene_reports = nlohmann::json::array();
+    const bool several_scenes = scenes.size() > 1;
+    for (size_t s = 0; s < scenes.size(); ++s) {
+        const SceneDesc& scene = scenes[s];
+        auto compositor = Compositor::load(*renderer.value(), scene, options);
+        if (!compositor) return fail(compositor.error());
+        const LoadStats& load = (*compositor)->load_stats();
+        std::printf("loaded %s in %.1f ms: %llu images, %llu targets, %llu shaders compiled, "
+                    "%llu pipelines created\n",
+                    scene.file.string().c_str(), load.milliseconds,
+                    (unsigned long long)load.images_loaded,
+                    (unsigned long long)load.targets_allocated,
+                    (unsigned long long)load.shaders_compiled,
+                    (unsigned long long)load.pipelines_created);
+        if (load.tile_texel_violations)
+            std::fprintf(stderr,
+                         "acetate: warning: %s: %llu tile texels have colour at alpha 0 (or "
+                         "NaN/Inf); they are dropped\n",
+                         scene.file.string().c_str(), (unsigned long long)load.tile_texel_violations);
 
-    if (load.tile_texel_violations)
-        std::fprintf(stderr,
-                     "acetate: warning: %s: %llu tile texels have colour at alpha 0 (or NaN/Inf); "
-                     "they are dropped\n",
-                     command.scene.string().c_str(), (unsigned long long)load.tile_texel_violations);
-    nlohmann::json frames = nlohmann::json::array();
-    const bool several = floors.size() > 1;
-    for (size_t i = 0; i < floors.size(); ++i) {
-        auto stats = (*compositor)->render(floors[i]);
-        if (!stats) return fail(stats.error());
-        auto pixels = (*compositor)->read_output();
-        if (!pixels) return fail(pixels.error());
-        const auto path = frame_output_path(command.output, floors[i], several);
-        if (auto saved = save_image(path, pixels.value()); !saved) return fail(saved.error());
-        std::printf("[%zu/%zu] floor %u: %.2f ms, %u passes, %llu pixels shaded, %llu violations "
-                    "-> %s\n",
-                    i + 1, floors.size(), floors[i], stats->milliseconds, stats->passes,
-                    (unsigned long long)stats->pixels_shaded,
-                    (unsigned long long)stats->violations, path.string().c_str());
-        frames.push_back(to_json(stats.value()));
-    }
-
-    if (command.stats) {
+        std::vector<uint32_t> floors = command.floors;
+        if (floors.empty()) floors.push_back(command.floor.value_or(scene.active_floor));
+        const bool several_floors = floors.size() > 1;
+        nlohmann::json frames = nlohmann::json::array();
+        for (size_t i = 0; i < floors.size(); ++i) {
+            auto stats = (*compositor)->render(floors[i], command.time);
+            if (!stats) return fail(stats.error());
+            auto pixels = (*compositor)->read_output();
+            if (!pixels) return fail(pixels.error());
+            const auto path = frame_output_path(
+                scene_output_path(command.output, s, several_scenes), floors[i], several_floors);
+            if (auto saved = save_image(path, pixels.value()); !saved) return fail(saved.error());
+            std::printf("[%zu/%zu] floor %u: %.2f ms, %u passes, %llu pixels shaded, %llu "
+                        "violations -> %s\n",
+                        i + 1, floors.size(), floors[i], stats->milliseconds, stats->passes,
+                        (unsigned long long)stats->pixels_shaded,
+                        (unsigned long long)stats->violations, path.string().c_str());
+            frames.push_back(to_json(stats.value()));
+        }
         nlohmann::json targets = nlohmann::json::array();
         for (const TargetInfo& t : (*compositor)->targets_held()) targets.push_back(to_json(t));
         nlohmann::json images = nlohmann::json::array();
         for (const TargetInfo& t : (*compositor)->images_held()) images.push_back(to_json(t));
-        const nlohmann::json stats = {{"device", (*context)->device_name()},
-                                      {"scene", command.scene.string()},
-                                      {"view", command.view},
-                                      {"format", command.format},
-                                      {"load", to_json(load)},
-                                      {"load_milliseconds", load.milliseconds},
-                                      {"frames", frames},
-                                      {"render_targets", targets},
-                                      {"images_held", images},
-                                      {"validation_messages",
-                                       (*context)->validation_messages().size()}};
+        scene_reports.push_back({{"scene", scene.file.string()},
+                                 {"load", to_json(load)},
+                                 {"load_milliseconds", load.milliseconds},
+                                 {"frames", frames},
+                                 {"render_targets", targets},
+                                 {"images_held", images}});
+    }
+    if (auto saved = (*renderer)->save_pipeline_cache(); !saved)
+        std::fprintf(stderr, "acetate: warning: pipeline cache not saved: %s\n",
+                     saved.error().message.c_str());
+
+    if (command.stats) {
+        nlohmann::json plugins = nlohmann::json::array();
+        // The first scene's figures stay at the top level, as for a single scene.
+        nlohmann::json stats = scene_reports.front();
+        stats["device"] = (*context)->device_name();
+        stats["view"] = command.view;
+        stats["format"] = command.format;
+        stats["scenes"] = scene_reports;
+        stats["plugins_loaded"] = (*renderer)->plugins().loaded_count();
+        stats["pipelines_in_pool"] = (*renderer)->pool().pipeline_count();
+        stats["pipeline_cache_warning"] = (*renderer)->pipeline_cache_warning();
+        stats["validation_messages"] = (*context)->validation_messages().size();
         if (auto written = write_file_atomically(*command.stats, stats.dump(2) + "\n"); !written)
             return fail(written.error());
         std::printf("stats -> %s\n", command.stats->string().c_str());

@@ -9,13 +9,16 @@
 namespace acetate {
 
 struct RenderCommand {
-    std::filesystem::path scene;
+    std::vector<std::filesystem::path> scenes;    // rendered in turn in one process
     std::filesystem::path output;                 // .exr or .png
     std::optional<uint32_t> floor;                // --floor N
     std::vector<uint32_t> floors;                 // --floors 0,1,2,1
     std::string view = "normal";                  // --view
     std::string format = "rgba16f";               // --format
     std::optional<std::filesystem::path> stats;   // --stats FILE
+    std::vector<std::filesystem::path> plugin_paths;  // --plugin-path DIR (repeatable)
+    float time = 0;                               // --time SECONDS: what effects animate with
+    bool pipeline_cache = true;                   // --no-pipeline-cache turns the disk cache off
 };
 
 // Runs the command; prints progress to stdout and one-line errors to stderr. Returns the exit
@@ -26,6 +29,9 @@ int run_render(const RenderCommand& command);
 // The file a frame of floor `floor` goes to: OUT itself for a single frame, else OUT with the
 // floor index before the extension (`out.floor1.png`).
 std::filesystem::path frame_output_path(const std::filesystem::path& output, uint32_t floor,
+                                        bool several);
+// With several scenes, `.sceneK` goes before the floor part (`out.scene2.floor1.png`).
+std::filesystem::path scene_output_path(const std::filesystem::path& output, size_t scene,
                                         bool several);
 
 }  // namespace acetate

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "render/renderer.hpp"
 #include "vulkan/vulkan_context.hpp"
 
 namespace acetate {
@@ -79,9 +80,40 @@ std::array<float, 3> isolation_tint(uint32_t index) {
     return rgb[size_t(sector % 6)];
 }
 
-Result<std::unique_ptr<Compositor>> Compositor::load(VulkanContext& context,
-                                                     const SceneDesc& scene,
+Compositor::Compositor(Renderer& renderer)
+    : renderer_(renderer), context_(renderer.context()) {}
+
+VkPipeline Compositor::host_pipeline(Stage stage) const {
+    return pipelines_->pipeline(stage, options_.format);
+}
+
+Result<void> Compositor::create_effects(const SceneDesc& scene) {
+    floor_effects_.resize(scene.floors.size());
+    for (size_t f = 0; f < scene.floors.size(); ++f) {
+        for (const EffectRef& ref : scene.floors[f].effects) {
+            auto instance = create_effect_instance(renderer_, scene, ref, int64_t(f),
+                                                   options_.format, effect_targets_);
+            if (!instance) return instance.error();
+            floor_effects_[f].push_back(std::move(instance.value()));
+        }
+    }
+    for (const EffectRef& ref : scene.global_effects) {
+        auto instance = create_effect_instance(renderer_, scene, ref, -1, options_.format,
+                                               effect_targets_);
+        if (!instance) return instance.error();
+        global_effects_.push_back(std::move(instance.value()));
+    }
+    // Masks are composited only for kinds some loaded effect reads.
+    for (const auto& floor : floor_effects_)
+        for (const auto& e : floor)
+            for (const std::string& kind : e->plugin->descriptor.masks)
+                options_.mask_kinds.insert(kind);
+    return {};
+}
+
+Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const SceneDesc& scene,
                                                      const CompositorOptions& options) {
+    VulkanContext& context = renderer.context();
     const auto start = std::chrono::steady_clock::now();
     const ResourceCounters before = context.counters();
     if (options.format != VK_FORMAT_R16G16B16A16_SFLOAT &&
@@ -98,29 +130,32 @@ Result<std::unique_ptr<Compositor>> Compositor::load(VulkanContext& context,
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("{}: floors: at least one floor is needed", scene.file.string()));
 
-    std::unique_ptr<Compositor> out(new Compositor(context));
+    std::unique_ptr<Compositor> out(new Compositor(renderer));
     out->options_ = options;
     out->scene_ = scene;
     out->width_ = scene.width;
     out->height_ = scene.height;
+    out->pipelines_ = &renderer.host_pipelines();
+    ACETATE_TRY(out->create_effects(scene));
 
-    auto resources = SceneResources::load(context, scene, options.format, options.mask_kinds);
+    auto resources =
+        SceneResources::load(context, scene, options.format, out->options_.mask_kinds);
     if (!resources) return resources.error();
     out->resources_ = std::move(resources.value());
     ACETATE_TRY(out->create_targets(scene));
 
+    // Only the stages this scene uses are compiled (once per process: the pool keeps them).
     std::vector<Stage> stages{Stage::Output};
     if (options.plan.draw_direct) stages.push_back(Stage::TileToAccum);
     if (out->floor_color_) {
         stages.push_back(Stage::TileToTarget);
         stages.push_back(Stage::Composite);
-        if (options.inject)
-            stages.push_back(options.inject->inside_coverage ? Stage::InjectCovered
-                                                             : Stage::InjectUncovered);
+        for (const auto& floor : out->floor_effects_)
+            if (std::any_of(floor.begin(), floor.end(), [](const auto& e) { return e->expanding; }))
+                stages.push_back(Stage::CompositeByAlpha);
+        if (options.inject) stages.push_back(out->inject_stage());
     }
-    auto pipelines = HostPipelines::create(context, options.format, stages);
-    if (!pipelines) return pipelines.error();
-    out->pipelines_ = std::move(pipelines.value());
+    for (Stage stage : stages) ACETATE_TRY(out->pipelines_->ensure(stage, options.format));
     ACETATE_TRY(out->warm_pipelines());
 
     const ResourceCounters used = delta(context.counters(), before);
@@ -172,6 +207,20 @@ Result<void> Compositor::create_targets(const SceneDesc& scene) {
                                              true));
         if (!stencil) return stencil.error();
         floor_stencil_ = std::move(stencil.value());
+    }
+    const bool floor_effects = std::any_of(floor_effects_.begin(), floor_effects_.end(),
+                                           [](const auto& f) { return !f.empty(); });
+    if (floor_effects) {
+        auto pingpong = wrap(GpuImage::create(context_, "floor.pingpong", width_, height_,
+                                              options_.format, kTargetUsage, true));
+        if (!pingpong) return pingpong.error();
+        floor_pingpong_ = std::move(pingpong.value());
+    }
+    if (!global_effects_.empty()) {
+        auto pingpong = wrap(GpuImage::create(context_, "accumulation.pingpong", width_, height_,
+                                              options_.format, kTargetUsage, true));
+        if (!pingpong) return pingpong.error();
+        accumulation_pingpong_ = std::move(pingpong.value());
     }
     auto violations = GpuBuffer::create(
         context_, VkDeviceSize(sizeof(uint32_t) * std::max<size_t>(1, scene.floors.size())),
@@ -255,6 +304,23 @@ Result<void> Compositor::warm_pipelines() {
         }
         accumulation_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         draw_one_pixel(cmd, Stage::Output, output_, false, accumulation_.view());
+        // Every effect pass too, reading the (cleared) output and writing one pixel.
+        auto warm_effect = [&](EffectInstance& effect, GpuImage& result, const std::map<std::string, GpuImage>* masks) {
+            EffectIo io;
+            io.previous = &output_;
+            io.result = &result;
+            io.masks = masks;
+            io.result_scissor = PixelRect{0, 0, 1, 1};
+            io.canvas_width = width_;
+            io.canvas_height = height_;
+            io.warm_up = true;
+            FloorFrameReport ignored;
+            record_effect(cmd, renderer_, effect, io, ignored);
+        };
+        for (size_t f = 0; f < floor_effects_.size(); ++f)
+            for (auto& effect : floor_effects_[f])
+                warm_effect(*effect, *floor_pingpong_, &resources_->floors()[f].masks);
+        for (auto& effect : global_effects_) warm_effect(*effect, *accumulation_pingpong_, nullptr);
     });
 }
 
@@ -267,7 +333,7 @@ void Compositor::set_scissor(VkCommandBuffer cmd, const PixelRect& rect) {
 
 void Compositor::bind(VkCommandBuffer cmd, Stage stage, VkImageView primary,
                       VkImageView secondary, VkSampler sampler) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_->pipeline(stage));
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, host_pipeline(stage));
     VkDescriptorImageInfo images[2] = {
         {sampler, primary, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
         {sampler, secondary, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
@@ -335,8 +401,16 @@ void Compositor::record_floor_direct(VkCommandBuffer cmd, const FloorStep& step,
 }
 
 void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step,
-                                             bool clear_all, FloorFrameReport& report) {
+                                             bool clear_all, float time,
+                                             FloorFrameReport& report) {
     GpuImage& color = *floor_color_;
+    const auto& effects = floor_effects_[step.floor];
+    const bool expanding =
+        std::any_of(effects.begin(), effects.end(), [](const auto& e) { return e->expanding; });
+    const PixelRect canvas{0, 0, int64_t(width_), int64_t(height_)};
+    // Effects may sample around a pixel, so with effects the whole target starts transparent:
+    // nothing another floor left in it can be read.
+    clear_all = clear_all || !effects.empty();
     GpuImage& stencil = *floor_stencil_;
     const bool has_depth = context_.stencil_format() != VK_FORMAT_S8_UINT;
     color.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -361,7 +435,7 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     vkCmdBeginRendering(cmd, &info);
     draw_tiles(cmd, Stage::TileToTarget, step.floor, step.scissor, report);
     if (options_.inject) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_->pipeline(inject_stage()));
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, host_pipeline(inject_stage()));
         StagePushConstants push;
         std::memcpy(push.tint, options_.inject->colour.data(), sizeof(push.tint));
         vkCmdPushConstants(cmd, pipelines_->layout(),
@@ -373,33 +447,91 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
         report.pixels_shaded += step.scissor.area();
     }
     vkCmdEndRendering(cmd);
-
-    // Composite: floor target over the accumulation, only where the floor's stencil says 1.
     color.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+
+    // The floor's effects, in scene order, ping-ponging between the two floor targets.
+    GpuImage* current = &color;
+    if (!effects.empty()) {
+        GpuImage& other = *floor_pingpong_;
+        other.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
+        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, other.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
+                             &range);
+        GpuImage* next = &other;
+        for (const auto& effect : effects) {
+            EffectIo io;
+            io.previous = current;
+            io.result = next;
+            io.masks = &resources_->floors()[step.floor].masks;
+            io.result_scissor = effect->expanding || expanding ? canvas : step.scissor;
+            io.time = time;
+            io.canvas_width = width_;
+            io.canvas_height = height_;
+            record_effect(cmd, renderer_, *effect, io, report);
+            std::swap(current, next);
+        }
+    }
+    viewed_floor_ = current;
+
+    // Composite: the floor over the accumulation, only where the floor's stencil says 1 (or,
+    // after a coverage-expanding effect, wherever the floor is not fully transparent).
+    const PixelRect composite_area = expanding ? canvas : step.scissor;
     accumulation_.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     VkRenderingAttachmentInfo accum_info = color_attachment(accumulation_.view(), false);
     stencil_info.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
     stencil_info.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
-    info.renderArea = to_vk(step.scissor);
+    info.renderArea = to_vk(composite_area);
     info.pColorAttachments = &accum_info;
     vkCmdBeginRendering(cmd, &info);
-    set_scissor(cmd, step.scissor);
-    bind(cmd, Stage::Composite, color.view(), color.view(), pipelines_->nearest_sampler());
+    set_scissor(cmd, composite_area);
+    bind(cmd, expanding ? Stage::CompositeByAlpha : Stage::Composite, current->view(),
+         current->view(), pipelines_->nearest_sampler());
     StagePushConstants push;
     push.floor_index = step.floor;
+    push.mode = expanding ? 1u : 0u;
     vkCmdPushConstants(cmd, pipelines_->layout(),
                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
                        &push);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);
     ++report.passes;
-    report.pixels_shaded += step.scissor.area();
+    report.pixels_shaded += composite_area.area();
+}
+
+void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, float time) {
+    final_accumulation_ = &accumulation_;
+    if (global_effects_.empty()) return;
+    GpuImage* current = &accumulation_;
+    GpuImage* next = &*accumulation_pingpong_;
+    FloorFrameReport report;
+    report.floor = UINT32_MAX;
+    report.path = "global";
+    report.why = "global effects on the composite";
+    report.scissor = {0, 0, int64_t(width_), int64_t(height_)};
+    for (const auto& effect : global_effects_) {
+        EffectIo io;
+        io.previous = current;
+        io.result = next;
+        io.result_scissor = report.scissor;  // every pass writes every pixel of "result"
+        io.time = time;
+        io.canvas_width = width_;
+        io.canvas_height = height_;
+        record_effect(cmd, renderer_, *effect, io, report);
+        std::swap(current, next);
+    }
+    final_accumulation_ = current;
+    stats.passes += report.passes;
+    stats.pixels_shaded += report.pixels_shaded;
+    stats.global = report;
 }
 
 void Compositor::record_output(VkCommandBuffer cmd, FrameStats& stats) {
-    accumulation_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    const bool floor_view = view_reads_floor_target(options_.view) && floor_color_;
-    if (floor_view) floor_color_->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    GpuImage& accumulation = final_accumulation_ ? *final_accumulation_ : accumulation_;
+    GpuImage* floor_image = viewed_floor_ ? viewed_floor_ : (floor_color_ ? &*floor_color_ : nullptr);
+    accumulation.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    const bool floor_view = view_reads_floor_target(options_.view) && floor_image;
+    if (floor_view) floor_image->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     output_.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     const PixelRect all{0, 0, int64_t(width_), int64_t(height_)};
     VkRenderingAttachmentInfo color = color_attachment(output_.view(), false);
@@ -411,8 +543,8 @@ void Compositor::record_output(VkCommandBuffer cmd, FrameStats& stats) {
     info.pColorAttachments = &color;
     vkCmdBeginRendering(cmd, &info);
     set_scissor(cmd, all);
-    bind(cmd, Stage::Output, accumulation_.view(),
-         floor_view ? floor_color_->view() : accumulation_.view(), pipelines_->nearest_sampler());
+    bind(cmd, Stage::Output, accumulation.view(),
+         floor_view ? floor_image->view() : accumulation.view(), pipelines_->nearest_sampler());
     StagePushConstants push;
     std::memcpy(push.tint, scene_.background.data(), sizeof(push.tint));
     push.canvas[0] = float(width_);
@@ -427,7 +559,9 @@ void Compositor::record_output(VkCommandBuffer cmd, FrameStats& stats) {
     stats.pixels_shaded += all.area();
 }
 
-void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats) {
+void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats,
+                              float time) {
+    viewed_floor_ = floor_color_ ? &*floor_color_ : nullptr;
     accumulation_.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -443,7 +577,7 @@ void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameS
         if (step.path == FloorPath::Direct) record_floor_direct(cmd, step, report);
         if (step.path == FloorPath::ThroughTarget) {
             const bool is_viewed = floor_view && step.floor == stats.active_floor;
-            record_floor_through_target(cmd, step, is_viewed, report);
+            record_floor_through_target(cmd, step, is_viewed, time, report);
         }
         stats.passes += report.passes;
         stats.pixels_shaded += report.pixels_shaded;
@@ -455,11 +589,13 @@ void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameS
         floor_color_->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         vkCmdClearColorImage(cmd, floor_color_->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                              &zero, 1, &range);
+        viewed_floor_ = &*floor_color_;
     }
+    record_global_effects(cmd, stats, time);
     record_output(cmd, stats);
 }
 
-Result<FrameStats> Compositor::render(uint32_t active_floor) {
+Result<FrameStats> Compositor::render(uint32_t active_floor, float time) {
     if (active_floor >= floor_count())
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("{}: active floor {} does not exist (the scene has {} "
@@ -481,7 +617,7 @@ Result<FrameStats> Compositor::render(uint32_t active_floor) {
     stats.active_floor = active_floor;
     std::memset(violations_.mapped(), 0, violations_.size());
     ACETATE_TRY(context_.submit_and_wait(
-        [&](VkCommandBuffer cmd) { record_frame(cmd, last_plan_, stats); }));
+        [&](VkCommandBuffer cmd) { record_frame(cmd, last_plan_, stats, time); }));
     stats.milliseconds = milliseconds_since(start);
 
     const auto* counts = static_cast<const uint32_t*>(violations_.mapped());
@@ -499,7 +635,7 @@ Result<FrameStats> Compositor::render(uint32_t active_floor) {
 
 Result<ImageRGBA> Compositor::read_output() { return read_back_image(context_, output_); }
 Result<ImageRGBA> Compositor::read_accumulation() {
-    return read_back_image(context_, accumulation_);
+    return read_back_image(context_, final_accumulation_ ? *final_accumulation_ : accumulation_);
 }
 
 std::vector<TargetInfo> Compositor::targets_held() const {
@@ -510,8 +646,11 @@ std::vector<TargetInfo> Compositor::targets_held() const {
     };
     add(accumulation_);
     add(output_);
+    if (accumulation_pingpong_) add(*accumulation_pingpong_);
     if (floor_color_) add(*floor_color_);
     if (floor_stencil_) add(*floor_stencil_);
+    if (floor_pingpong_) add(*floor_pingpong_);
+    for (const GpuImage* image : effect_targets_.images()) add(*image);
     return out;
 }
 

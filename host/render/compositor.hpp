@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 
+#include "render/effect_runtime.hpp"
 #include "render/frame_plan.hpp"
 #include "render/frame_stats.hpp"
 #include "render/host_pipelines.hpp"
@@ -21,6 +22,7 @@
 namespace acetate {
 
 class VulkanContext;
+class Renderer;
 
 // What the output image shows (seed 000's AlphaValidator views).
 enum class OutputView {
@@ -54,10 +56,10 @@ struct CompositorOptions {
 
 class Compositor {
 public:
-    // Loads images, composites masks, allocates targets, creates and warms every pipeline the
-    // scene needs. Errors name the scene file and field (e.g. a canvas over the device limit).
-    static Result<std::unique_ptr<Compositor>> load(VulkanContext& context,
-                                                    const SceneDesc& scene,
+    // Loads the plugins the scene names (only those), builds their instances, loads images,
+    // composites the masks effects need, allocates targets, creates and warms every pipeline.
+    // Errors name the scene file and field (e.g. a canvas over the device limit).
+    static Result<std::unique_ptr<Compositor>> load(Renderer& renderer, const SceneDesc& scene,
                                                     const CompositorOptions& options);
     ~Compositor();
     Compositor(const Compositor&) = delete;
@@ -65,7 +67,8 @@ public:
 
     // Renders floors 0..active_floor and the output. Fails with InvalidInput for a floor index
     // out of range, or when the view needs a floor target this compositor was loaded without.
-    Result<FrameStats> render(uint32_t active_floor);
+    // `time` (seconds) is what effects animate with.
+    Result<FrameStats> render(uint32_t active_floor, float time = 0.0f);
     // Changes the view for later frames (no allocation; see render()).
     void set_view(OutputView view) { options_.view = view; }
 
@@ -84,13 +87,16 @@ public:
     std::vector<TargetInfo> images_held() const;
 
 private:
-    Compositor(VulkanContext& context) : context_(context) {}
+    Compositor(Renderer& renderer);
+    Result<void> create_effects(const SceneDesc& scene);
+    void record_global_effects(VkCommandBuffer cmd, FrameStats& stats, float time);
+    VkPipeline host_pipeline(Stage stage) const;
     Result<void> create_targets(const SceneDesc& scene);
     Result<void> warm_pipelines();
-    void record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats);
+    void record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats, float time);
     void record_floor_direct(VkCommandBuffer cmd, const FloorStep& step, FloorFrameReport& report);
     void record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step, bool clear_all,
-                                     FloorFrameReport& report);
+                                     float time, FloorFrameReport& report);
     void record_output(VkCommandBuffer cmd, FrameStats& stats);
     void draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor, const PixelRect& scissor,
                     FloorFrameReport& report);
@@ -100,16 +106,24 @@ private:
     bool needs_floor_target() const;
     Stage inject_stage() const;
 
+    Renderer& renderer_;
     VulkanContext& context_;
     CompositorOptions options_;
     SceneDesc scene_;
     uint32_t width_ = 0, height_ = 0;
     std::unique_ptr<SceneResources> resources_;
-    std::unique_ptr<HostPipelines> pipelines_;
+    HostPipelines* pipelines_ = nullptr;  // owned by the renderer, shared by scenes
+    std::vector<std::vector<std::unique_ptr<EffectInstance>>> floor_effects_;  // per floor
+    std::vector<std::unique_ptr<EffectInstance>> global_effects_;
+    EffectTargets effect_targets_;
     GpuImage accumulation_;
+    std::optional<GpuImage> accumulation_pingpong_;  // only with global effects
+    GpuImage* final_accumulation_ = nullptr;         // what the output read last frame
+    GpuImage* viewed_floor_ = nullptr;               // the active floor's content, for views
     GpuImage output_;
     std::optional<GpuImage> floor_color_;
     std::optional<GpuImage> floor_stencil_;
+    std::optional<GpuImage> floor_pingpong_;  // only when some floor has effects
     GpuBuffer violations_;
     LoadStats load_stats_;
     FramePlan last_plan_;

@@ -2,19 +2,23 @@
 
 namespace acetate {
 
-nlohmann::json to_json(const FrameStats& s) {
-    nlohmann::json floors = nlohmann::json::array();
-    for (const FloorFrameReport& f : s.floors) {
-        floors.push_back({{"floor", f.floor},
+namespace {
+nlohmann::json report_json(const FloorFrameReport& f) {
+    return {{"floor", f.floor},
                           {"path", f.path},
                           {"why", f.why},
                           {"scissor", {f.scissor.x0, f.scissor.y0, f.scissor.x1 - f.scissor.x0,
                                        f.scissor.y1 - f.scissor.y0}},
                           {"passes", f.passes},
                           {"pixels_shaded", f.pixels_shaded},
-                          {"violations", f.violations}});
-    }
-    return {{"active_floor", s.active_floor},
+                          {"violations", f.violations}};
+}
+}  // namespace
+
+nlohmann::json to_json(const FrameStats& s) {
+    nlohmann::json floors = nlohmann::json::array();
+    for (const FloorFrameReport& f : s.floors) floors.push_back(report_json(f));
+    nlohmann::json out = {{"active_floor", s.active_floor},
             {"milliseconds", s.milliseconds},
             {"passes", s.passes},
             {"pixels_shaded", s.pixels_shaded},
@@ -24,6 +28,8 @@ nlohmann::json to_json(const FrameStats& s) {
             {"pipelines_created", s.pipelines_created},
             {"premultiplied_violations", s.violations},
             {"floors", floors}};
+    if (s.global) out["global_effects"] = report_json(*s.global);
+    return out;
 }
 
 nlohmann::json to_json(const LoadStats& s) {

@@ -3,6 +3,7 @@
 // these as JSON.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,7 @@ struct FrameStats {
     // are checked once at load (LoadStats::tile_texel_violations).
     uint64_t violations = 0;
     std::vector<FloorFrameReport> floors;
+    std::optional<FloorFrameReport> global;  // the global effects, when the scene has any
 };
 
 struct LoadStats {

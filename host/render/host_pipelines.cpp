@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/check.hpp"
+#include "render/pipeline_pool.hpp"
 #include "vulkan/shader_compiler.hpp"
 #include "vulkan/vulkan_context.hpp"
 
@@ -13,6 +14,7 @@ const char* stage_name(Stage stage) {
         case Stage::TileToTarget: return "tile-to-target";
         case Stage::TileToAccum: return "tile-to-accumulation";
         case Stage::Composite: return "composite";
+        case Stage::CompositeByAlpha: return "composite-by-alpha";
         case Stage::InjectCovered: return "inject-covered";
         case Stage::InjectUncovered: return "inject-uncovered";
         case Stage::Output: return "output";
@@ -40,6 +42,8 @@ StageState state_of(Stage stage) {
             return {"tile.vert", "tile.frag", false, VK_COMPARE_OP_ALWAYS, false, true};
         case Stage::Composite:
             return {"fullscreen.vert", "composite.frag", true, VK_COMPARE_OP_EQUAL, false, true};
+        case Stage::CompositeByAlpha:
+            return {"fullscreen.vert", "composite.frag", true, VK_COMPARE_OP_ALWAYS, false, true};
         case Stage::InjectCovered:
             return {"fullscreen.vert", "inject.frag", true, VK_COMPARE_OP_EQUAL, false, false};
         case Stage::InjectUncovered:
@@ -52,32 +56,31 @@ StageState state_of(Stage stage) {
 }  // namespace
 
 Result<std::unique_ptr<HostPipelines>> HostPipelines::create(VulkanContext& context,
-                                                             VkFormat color_format,
-                                                             const std::vector<Stage>& stages) {
-    std::unique_ptr<HostPipelines> out(new HostPipelines(context));
+                                                             PipelinePool& pool) {
+    std::unique_ptr<HostPipelines> out(new HostPipelines(context, pool));
     ACETATE_TRY(out->create_layout());
-    Result<void> created;
-    for (size_t i = 0; i < stages.size() && created.ok(); ++i)
-        created = out->create_stage(stages[i], color_format);
-    // Modules are only needed while pipelines are created; several stages share one.
-    for (auto& [name, module] : out->modules_)
-        vkDestroyShaderModule(context.device(), module, nullptr);
-    out->modules_.clear();
-    if (!created) return created.error();
     return out;
 }
 
-VkPipeline HostPipelines::pipeline(Stage stage) const {
-    const VkPipeline p = pipelines_[size_t(stage)];
-    ACETATE_CHECK(p != VK_NULL_HANDLE, "stage \"%s\" was not created for this scene",
+Result<void> HostPipelines::ensure(Stage stage, VkFormat color_format) {
+    if (pipelines_.count({stage, color_format})) return {};
+    const std::string key = fmt::format("host/{}/{}", stage_name(stage), int(color_format));
+    auto pipeline = pool_.pipeline(
+        key, [&](VkPipelineCache cache) { return create_stage(stage, color_format, cache); });
+    if (!pipeline) return pipeline.error();
+    pipelines_[{stage, color_format}] = pipeline.value();
+    return {};
+}
+
+VkPipeline HostPipelines::pipeline(Stage stage, VkFormat color_format) const {
+    const auto found = pipelines_.find({stage, color_format});
+    ACETATE_CHECK(found != pipelines_.end(), "stage \"%s\" was not prepared at load",
                   stage_name(stage));
-    return p;
+    return found->second;
 }
 
 HostPipelines::~HostPipelines() {
     VkDevice device = context_.device();
-    for (VkPipeline p : pipelines_)
-        if (p) vkDestroyPipeline(device, p, nullptr);
     if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
     if (set_layout_) vkDestroyDescriptorSetLayout(device, set_layout_, nullptr);
     if (linear_sampler_) vkDestroySampler(device, linear_sampler_, nullptr);
@@ -123,31 +126,24 @@ Result<void> HostPipelines::create_layout() {
     return {};
 }
 
-Result<VkShaderModule> HostPipelines::shader_module(const char* name) {
-    if (auto it = modules_.find(name); it != modules_.end()) return it->second;
-    const std::string_view source = embedded_shader(name);
-    if (source.empty())
-        return make_error(ErrorCode::ShaderCompile, fmt::format("shader \"{}\" is not embedded", name));
-    const std::string_view n(name);
-    const ShaderStage stage = n.ends_with(".vert") ? ShaderStage::Vertex : ShaderStage::Fragment;
-    auto spirv = compile_glsl(name, stage, source);
-    if (!spirv) return spirv.error();
-    ++context_.counters().shaders_compiled;
-    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    info.codeSize = spirv->size() * sizeof(uint32_t);
-    info.pCode = spirv->data();
-    VkShaderModule module = VK_NULL_HANDLE;
-    ACETATE_VK(vkCreateShaderModule(context_.device(), &info, nullptr, &module));
-    modules_[name] = module;
-    return module;
-}
-
-Result<void> HostPipelines::create_stage(Stage stage, VkFormat color_format) {
+Result<VkPipeline> HostPipelines::create_stage(Stage stage, VkFormat color_format,
+                                               VkPipelineCache cache) {
     const StageState s = state_of(stage);
-    auto vert = shader_module(s.vertex);
+    auto compile = [&](const char* name) -> Result<VkShaderModule> {
+        const std::string_view n(name);
+        auto spirv = pool_.spirv(name, n.ends_with(".vert") ? ShaderStage::Vertex
+                                                            : ShaderStage::Fragment,
+                                 embedded_shader(name));
+        if (!spirv) return spirv.error();
+        return pool_.module(*spirv.value());
+    };
+    auto vert = compile(s.vertex);
     if (!vert) return vert.error();
-    auto frag = shader_module(s.fragment);
-    if (!frag) return frag.error();
+    auto frag = compile(s.fragment);
+    if (!frag) {
+        vkDestroyShaderModule(context_.device(), vert.value(), nullptr);
+        return frag.error();
+    }
 
     VkPipelineShaderStageCreateInfo stages[2] = {};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
@@ -232,15 +228,16 @@ Result<void> HostPipelines::create_stage(Stage stage, VkFormat color_format) {
     info.pColorBlendState = &blend_state;
     info.pDynamicState = &dynamic_state;
     info.layout = layout_;
-    VkResult r = vkCreateGraphicsPipelines(context_.device(), VK_NULL_HANDLE, 1, &info, nullptr,
-                                           &pipelines_[size_t(stage)]);
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkResult r = vkCreateGraphicsPipelines(context_.device(), cache, 1, &info, nullptr, &pipeline);
+    vkDestroyShaderModule(context_.device(), vert.value(), nullptr);
+    vkDestroyShaderModule(context_.device(), frag.value(), nullptr);
     if (r != VK_SUCCESS)
         return make_error(ErrorCode::VulkanCall,
                           fmt::format("creating the \"{}\" pipeline failed (VkResult {})",
                                       stage_name(stage), int(r)),
                           r);
-    ++context_.counters().pipelines_created;
-    return {};
+    return pipeline;
 }
 
 }  // namespace acetate

@@ -15,6 +15,7 @@
 namespace acetate {
 
 class VulkanContext;
+class PipelinePool;
 
 // Push constants shared by every host stage (48 bytes; matches the GLSL `Push` blocks).
 struct StagePushConstants {
@@ -30,6 +31,7 @@ enum class Stage {
     TileToTarget,   // tile -> floor target; over blend; writes stencil = 1 where it covers
     TileToAccum,    // tile -> accumulation directly (floors without effects); over blend
     Composite,      // floor target -> accumulation; over blend; stencil EQUAL 1
+    CompositeByAlpha,  // same, gated by discarding a == 0 (coverage-expanding effects, A1)
     InjectCovered,    // test hook: colour -> floor target where stencil == 1
     InjectUncovered,  // test hook: colour -> floor target where stencil != 1
     Output,         // accumulation -> output image over the background, or a debug view
@@ -37,17 +39,19 @@ enum class Stage {
 };
 const char* stage_name(Stage stage);
 
+// Process-wide (one per Renderer): the layout and samplers all host stages share, and their
+// pipelines per stage and colour format, kept in the PipelinePool so they survive scenes.
 class HostPipelines {
 public:
-    // Compiles the host shaders these stages use and creates one pipeline per stage for this
-    // colour format; stages not asked for are neither compiled nor created.
     static Result<std::unique_ptr<HostPipelines>> create(VulkanContext& context,
-                                                         VkFormat color_format,
-                                                         const std::vector<Stage>& stages);
+                                                         PipelinePool& pool);
     ~HostPipelines();
 
-    // The stage's pipeline; asking for a stage that was not created is a host bug.
-    VkPipeline pipeline(Stage stage) const;
+    // Makes sure the stage's pipeline for this colour format exists: compiles its shaders and
+    // creates it on first request only. Called at load; never during a frame.
+    Result<void> ensure(Stage stage, VkFormat color_format);
+    // The stage's pipeline; asking for one that ensure() did not make is a host bug.
+    VkPipeline pipeline(Stage stage, VkFormat color_format) const;
     VkPipelineLayout layout() const { return layout_; }
     VkSampler linear_sampler() const { return linear_sampler_; }
     VkSampler nearest_sampler() const { return nearest_sampler_; }
@@ -58,18 +62,17 @@ public:
     static constexpr uint32_t kViolationBuffer = 2;
 
 private:
-    explicit HostPipelines(VulkanContext& context) : context_(context) {}
+    HostPipelines(VulkanContext& context, PipelinePool& pool) : context_(context), pool_(pool) {}
     Result<void> create_layout();
-    Result<VkShaderModule> shader_module(const char* name);
-    Result<void> create_stage(Stage stage, VkFormat color_format);
+    Result<VkPipeline> create_stage(Stage stage, VkFormat color_format, VkPipelineCache cache);
 
     VulkanContext& context_;
+    PipelinePool& pool_;
     VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkSampler linear_sampler_ = VK_NULL_HANDLE;
     VkSampler nearest_sampler_ = VK_NULL_HANDLE;
-    std::array<VkPipeline, size_t(Stage::Count)> pipelines_{};
-    std::map<std::string, VkShaderModule> modules_;  // only during create()
+    std::map<std::pair<Stage, VkFormat>, VkPipeline> pipelines_;  // owned by the pool
 };
 
 }  // namespace acetate

@@ -19,5 +19,9 @@ void main() {
     vec4 c = texelFetch(floor_color, ivec2(gl_FragCoord.xy), 0);
     bool bad = (c.a <= 0.0 && any(notEqual(c.rgb, vec3(0.0)))) || any(isnan(c)) || any(isinf(c));
     if (bad) atomicAdd(violations.count[pc.floor_index], 1u);
+    // Gate by alpha (tint_mode 1): a coverage-expanding effect may have drawn past the tiles'
+    // stencil, so pixels it left fully transparent are dropped instead (over with (0,0,0,0) is
+    // a no-op anyway; colour at alpha 0 is still composited, and counted above).
+    if (pc.tint_mode == 1u && c == vec4(0.0)) discard;
     color = c;
 }

@@ -1,0 +1,119 @@
+#include "plugins/effect_descriptor.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <regex>
+#include <set>
+
+namespace acetate {
+
+bool is_simple_name(const std::string& name) {
+    static const std::regex pattern("[a-z][a-z0-9_]*");
+    return std::regex_match(name, pattern);
+}
+
+int EffectDescriptor::param_index(const std::string& name) const {
+    for (size_t i = 0; i < params.size(); ++i)
+        if (params[i].name == name) return int(i);
+    return -1;
+}
+
+std::string EffectDescriptor::version_string() const {
+    return fmt::format("{}.{}.{}", version[0], version[1], version[2]);
+}
+
+namespace {
+
+Error bad(const std::string& where, const std::string& what) {
+    return make_error(ErrorCode::InvalidInput, fmt::format("{}: descriptor: {}", where, what));
+}
+
+bool is_reverse_dns(const std::string& id) {
+    static const std::regex pattern("[a-z][a-z0-9_-]*(\\.[a-z][a-z0-9_-]*)+");
+    return std::regex_match(id, pattern);
+}
+
+}  // namespace
+
+Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d, const std::string& where) {
+    if (!d) return bad(where, "the plugin returned no descriptor (NULL)");
+    if (d->struct_size < sizeof(AcetateEffectDescriptor))
+        return bad(where, fmt::format("struct_size {} is smaller than ABI 1's {}", d->struct_size,
+                                      sizeof(AcetateEffectDescriptor)));
+    if (d->abi_version != ACETATE_ABI_VERSION)
+        return bad(where, fmt::format("built for ABI version {}, this host speaks {}",
+                                      d->abi_version, ACETATE_ABI_VERSION));
+    EffectDescriptor out;
+    if (!d->id || !is_reverse_dns(d->id))
+        return bad(where, fmt::format("id \"{}\" is not a reverse-DNS name like \"com.example.glow\"",
+                                      d->id ? d->id : "(null)"));
+    out.id = d->id;
+    out.display_name = d->display_name ? d->display_name : out.id;
+    out.source_digest = d->source_digest ? d->source_digest : "";
+    out.version[0] = d->version_major;
+    out.version[1] = d->version_minor;
+    out.version[2] = d->version_patch;
+    if (d->scope != ACETATE_SCOPE_FLOOR && d->scope != ACETATE_SCOPE_GLOBAL)
+        return bad(where, fmt::format("scope {} is neither floor (0) nor global (1)", d->scope));
+    if (d->coverage != ACETATE_COVERAGE_PRESERVING && d->coverage != ACETATE_COVERAGE_EXPANDING)
+        return bad(where, fmt::format("coverage {} is neither preserving (0) nor expanding (1)",
+                                      d->coverage));
+    out.scope = d->scope;
+    out.coverage = d->coverage;
+
+    if (d->mask_count && !d->masks) return bad(where, "mask_count > 0 but masks is NULL");
+    for (uint32_t i = 0; i < d->mask_count; ++i) {
+        if (!d->masks[i] || !is_simple_name(d->masks[i]))
+            return bad(where, fmt::format("masks[{}] is not a name like \"water\"", i));
+        out.masks.emplace_back(d->masks[i]);
+    }
+
+    if (d->param_count && !d->params) return bad(where, "param_count > 0 but params is NULL");
+    std::set<std::string> names;
+    for (uint32_t i = 0; i < d->param_count; ++i) {
+        const AcetateParamDesc& p = d->params[i];
+        const std::string name = p.name ? p.name : "";
+        const std::string field = fmt::format("params[{}] \"{}\"", i, name);
+        if (!is_simple_name(name)) return bad(where, field + ": name must match [a-z][a-z0-9_]*");
+        if (!names.insert(name).second) return bad(where, field + ": duplicate name");
+        if (p.type > ACETATE_PARAM_BOOL) return bad(where, fmt::format("{}: unknown type {}", field, p.type));
+        if (!std::isfinite(p.default_value) || !std::isfinite(p.min_value) || !std::isfinite(p.max_value))
+            return bad(where, field + ": default, min and max must be finite");
+        if (p.min_value > p.max_value)
+            return bad(where, fmt::format("{}: min {} is greater than max {}", field, p.min_value, p.max_value));
+        if (p.default_value < p.min_value || p.default_value > p.max_value)
+            return bad(where, fmt::format("{}: default {} is outside [{}, {}]", field,
+                                          p.default_value, p.min_value, p.max_value));
+        out.params.push_back({name, p.description ? p.description : "", p.type, p.default_value,
+                              p.min_value, p.max_value});
+    }
+
+    if (d->preset_count && !d->presets) return bad(where, "preset_count > 0 but presets is NULL");
+    static const std::set<std::string> kPresets{"low", "medium", "high", "ultra"};
+    for (uint32_t i = 0; i < d->preset_count; ++i) {
+        const AcetatePresetDesc& preset = d->presets[i];
+        const std::string name = preset.name ? preset.name : "";
+        if (!kPresets.count(name))
+            return bad(where, fmt::format("presets[{}] \"{}\": expected low, medium, high or ultra", i, name));
+        if (out.presets.count(name)) return bad(where, fmt::format("presets[{}] \"{}\": duplicate", i, name));
+        if (preset.value_count && !preset.values)
+            return bad(where, fmt::format("presets[{}]: value_count > 0 but values is NULL", i));
+        auto& values = out.presets[name];
+        for (uint32_t v = 0; v < preset.value_count; ++v) {
+            const std::string param = preset.values[v].param ? preset.values[v].param : "";
+            const int index = out.param_index(param);
+            if (index < 0)
+                return bad(where, fmt::format("presets[{}] \"{}\": unknown parameter \"{}\"", i, name, param));
+            const EffectParam& p = out.params[size_t(index)];
+            const float value = preset.values[v].value;
+            if (!(value >= p.min_value && value <= p.max_value))
+                return bad(where, fmt::format("presets[{}] \"{}\": {} = {} is outside [{}, {}]", i,
+                                              name, param, value, p.min_value, p.max_value));
+            values[param] = value;
+        }
+    }
+    return out;
+}
+
+}  // namespace acetate

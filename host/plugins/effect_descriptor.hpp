@@ -1,0 +1,44 @@
+#pragma once
+// The host's own copy of a plugin's descriptor, checked once at load. Nothing after load reads
+// the plugin's C structs again, so a plugin cannot change what it declared.
+
+#include <acetate/effect.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/result.hpp"
+
+namespace acetate {
+
+struct EffectParam {
+    std::string name, description;
+    uint32_t type = ACETATE_PARAM_FLOAT;
+    float default_value = 0, min_value = 0, max_value = 0;
+};
+
+struct EffectDescriptor {
+    std::string id, display_name, source_digest;
+    uint32_t version[3] = {0, 0, 0};
+    uint32_t scope = ACETATE_SCOPE_FLOOR;
+    uint32_t coverage = ACETATE_COVERAGE_PRESERVING;
+    std::vector<std::string> masks;
+    std::vector<EffectParam> params;
+    std::map<std::string, std::map<std::string, float>> presets;  // name -> param -> value
+
+    int param_index(const std::string& name) const;
+    std::string version_string() const;
+};
+
+// Copies and checks a descriptor: struct size, ABI version, id (reverse-DNS), names, scope,
+// coverage, every parameter's range and default, every preset's names and values. The error
+// names `where` (the plugin file) and the field, e.g.
+// `lighting.so: params[2] "darkness": default 1.5 is outside [0, 1]`.
+Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* descriptor,
+                                         const std::string& where);
+
+// [a-z][a-z0-9_]* -- the names of parameters, targets, passes and mask kinds.
+bool is_simple_name(const std::string& name);
+
+}  // namespace acetate

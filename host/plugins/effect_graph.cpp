@@ -1,0 +1,144 @@
+#include "plugins/effect_graph.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <set>
+
+// The host's side of the opaque handle the plugin receives.
+struct AcetateGraph {
+    const acetate::EffectDescriptor* descriptor = nullptr;
+    std::string label;
+    acetate::EffectGraph graph;
+    std::set<std::string> written;  // targets some earlier pass wrote
+    std::string error;              // the first refusal, reported by build_effect_graph
+};
+
+namespace acetate {
+namespace {
+
+AcetateStatus refuse(AcetateGraph* g, std::string message) {
+    if (g->error.empty()) g->error = std::move(message);
+    return ACETATE_ERROR_INVALID_ARGUMENT;
+}
+
+bool is_target(const AcetateGraph* g, const std::string& name) {
+    return std::any_of(g->graph.targets.begin(), g->graph.targets.end(),
+                       [&](const GraphTarget& t) { return t.name == name; });
+}
+
+AcetateStatus declare_target(AcetateGraph* g, const AcetateTargetDesc* t) {
+    if (!g) return ACETATE_ERROR_INVALID_ARGUMENT;
+    if (!t || !t->name) return refuse(g, fmt::format("{}: declare_target with no name", g->label));
+    const std::string name = t->name;
+    if (!is_simple_name(name) || name == "previous" || name == "result")
+        return refuse(g, fmt::format("{}: target \"{}\": name must match [a-z][a-z0-9_]* and not "
+                                     "be \"previous\" or \"result\"",
+                                     g->label, name));
+    if (is_target(g, name))
+        return refuse(g, fmt::format("{}: target \"{}\" is declared twice", g->label, name));
+    const uint32_t d = t->divisor;
+    if (d == 0 || d > 4096 || (d & (d - 1)) != 0)
+        return refuse(g, fmt::format("{}: target \"{}\": divisor {} is not a power of two "
+                                     "between 1 and 4096",
+                                     g->label, name, d));
+    g->graph.targets.push_back({name, d});
+    return ACETATE_OK;
+}
+
+AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
+    if (!g) return ACETATE_ERROR_INVALID_ARGUMENT;
+    if (!p || p->struct_size < sizeof(AcetatePassDesc))
+        return refuse(g, fmt::format("{}: add_pass with a missing or short AcetatePassDesc", g->label));
+    const std::string name = p->name ? p->name : "";
+    const std::string pass = fmt::format("pass \"{}.{}\"", g->label, name);
+    if (!is_simple_name(name)) return refuse(g, pass + ": name must match [a-z][a-z0-9_]*");
+    for (const GraphPass& earlier : g->graph.passes)
+        if (earlier.name == name) return refuse(g, pass + ": declared twice");
+    if (p->kind != ACETATE_PASS_FULLSCREEN)
+        return refuse(g, fmt::format("{}: unknown kind {}", pass, p->kind));
+    if (bool(p->glsl) == bool(p->spirv && p->spirv_word_count))
+        return refuse(g, pass + ": give exactly one of glsl and spirv");
+    if (p->input_count > 8 || (p->input_count && !p->inputs))
+        return refuse(g, fmt::format("{}: {} inputs (at most 8, and inputs must not be NULL)",
+                                     pass, p->input_count));
+    if (p->blend > ACETATE_BLEND_ADD)
+        return refuse(g, fmt::format("{}: unknown blend {}", pass, p->blend));
+    GraphPass out;
+    out.name = name;
+    out.blend = p->blend;
+    if (p->glsl) out.glsl = p->glsl;
+    else out.spirv.assign(p->spirv, p->spirv + p->spirv_word_count);
+    for (uint32_t i = 0; i < p->input_count; ++i) {
+        const std::string input = p->inputs[i] ? p->inputs[i] : "";
+        if (input == "previous") {
+        } else if (input.rfind("mask.", 0) == 0) {
+            const std::string kind = input.substr(5);
+            const auto& masks = g->descriptor->masks;
+            if (std::find(masks.begin(), masks.end(), kind) == masks.end())
+                return refuse(g, fmt::format("{} reads \"{}\", a mask kind the descriptor does not "
+                                             "list in masks",
+                                             pass, input));
+        } else if (!is_target(g, input)) {
+            return refuse(g, fmt::format("{} reads \"{}\", which is neither \"previous\", a mask "
+                                         "nor a declared target",
+                                         pass, input));
+        } else if (!g->written.count(input)) {
+            return refuse(g, fmt::format("{} reads \"{}\", which no earlier pass writes", pass, input));
+        }
+        if (std::count(out.inputs.begin(), out.inputs.end(), input))
+            return refuse(g, fmt::format("{} reads \"{}\" twice", pass, input));
+        out.inputs.push_back(input);
+    }
+    out.output = p->output ? p->output : "";
+    if (out.output != "result" && !is_target(g, out.output))
+        return refuse(g, fmt::format("{} writes \"{}\", which is neither \"result\" nor a declared "
+                                     "target",
+                                     pass, out.output));
+    if (std::count(out.inputs.begin(), out.inputs.end(), out.output))
+        return refuse(g, fmt::format("{} reads and writes \"{}\"", pass, out.output));
+    g->written.insert(out.output);
+    g->graph.passes.push_back(std::move(out));
+    return ACETATE_OK;
+}
+
+AcetateStatus set_floor_data(AcetateGraph* g, const float* data, uint32_t count) {
+    if (!g) return ACETATE_ERROR_INVALID_ARGUMENT;
+    if (count > (1u << 20) || (count && !data))
+        return refuse(g, fmt::format("{}: set_floor_data with {} floats (at most 1048576, data "
+                                     "not NULL)",
+                                     g->label, count));
+    g->graph.floor_data.assign(data, data + count);
+    return ACETATE_OK;
+}
+
+void log(AcetateGraph* g, const char* message) {
+    if (g && message) g->graph.log.push_back(fmt::format("{}: {}", g->label, message));
+}
+
+const AcetateHostApi kHostApi = {sizeof(AcetateHostApi), &declare_target, &add_pass,
+                                 &set_floor_data, &log};
+
+}  // namespace
+
+Result<EffectGraph> build_effect_graph(const LoadedPlugin& plugin, const AcetateFloorInfo& floor,
+                                       const std::string& label) {
+    AcetateGraph graph;
+    graph.descriptor = &plugin.descriptor;
+    graph.label = label;
+    const AcetateStatus status = plugin.api->build(&kHostApi, &graph, &floor);
+    if (!graph.error.empty()) return make_error(ErrorCode::InvalidInput, graph.error);
+    if (status != ACETATE_OK) {
+        const char* why = plugin.api->last_error();
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: build failed with status {}: {}", label, status,
+                                      why ? why : "(no message)"));
+    }
+    if (!graph.written.count("result"))
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: no pass writes \"result\"", label));
+    return std::move(graph.graph);
+}
+
+}  // namespace acetate

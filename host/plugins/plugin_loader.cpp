@@ -1,0 +1,105 @@
+#include "plugins/plugin_loader.hpp"
+
+#include <boost/dll/runtime_symbol_info.hpp>
+#include <boost/dll/shared_library.hpp>
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <sstream>
+
+namespace acetate {
+
+PluginLoader::PluginLoader(std::vector<std::filesystem::path> directories)
+    : directories_(std::move(directories)) {}
+
+std::vector<std::filesystem::path> PluginLoader::default_directories(
+    const std::vector<std::filesystem::path>& extra) {
+    std::vector<std::filesystem::path> out = extra;
+    if (const char* env = std::getenv("ACETATE_PLUGIN_PATH")) {
+        std::stringstream list(env);
+        std::string item;
+        while (std::getline(list, item, ':'))
+            if (!item.empty()) out.emplace_back(item);
+    }
+    boost::system::error_code ec;
+    const std::filesystem::path exe = boost::dll::program_location(ec).string();
+    if (!ec) {
+        const auto bin = exe.parent_path();
+        out.push_back(bin.parent_path() / "lib" / "acetate" / "plugins");   // installed
+        out.push_back(bin.parent_path().parent_path() / "plugins");           // build tree
+    }
+    return out;
+}
+
+Result<std::shared_ptr<LoadedPlugin>> PluginLoader::load_file(const std::filesystem::path& file) {
+    const std::string where = file.string();
+    auto plugin = std::make_shared<LoadedPlugin>();
+    plugin->file = file;
+    try {
+        plugin->library = std::make_shared<boost::dll::shared_library>(
+            file.string(), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
+    } catch (const std::exception& e) {
+        // Boost.DLL's exceptions carry dlerror()'s text: missing file, missing symbol, ...
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: cannot load the plugin: {}", where, e.what()));
+    }
+    if (!plugin->library->has(ACETATE_ENTRY_POINT_NAME))
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: no entry point {}: not an Acetate effect plugin", where,
+                                      ACETATE_ENTRY_POINT_NAME));
+    auto entry = plugin->library->get<AcetateStatus(uint32_t, const AcetateEffectApi**)>(
+        ACETATE_ENTRY_POINT_NAME);
+    const AcetateEffectApi* api = nullptr;
+    const AcetateStatus status = entry(ACETATE_ABI_VERSION, &api);
+    if (status == ACETATE_ERROR_UNSUPPORTED_ABI)
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: the plugin cannot serve ABI version {}", where,
+                                      ACETATE_ABI_VERSION));
+    if (status != ACETATE_OK)
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: {} failed with status {}", where,
+                                      ACETATE_ENTRY_POINT_NAME, status));
+    if (!api)
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: {} returned no function table", where,
+                                      ACETATE_ENTRY_POINT_NAME));
+    if (api->struct_size < sizeof(AcetateEffectApi) || !api->build || !api->last_error)
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: the function table is incomplete (struct_size {}, "
+                                      "build and last_error must be set)",
+                                      where, api->struct_size));
+    auto descriptor = copy_descriptor(api->descriptor, where);
+    if (!descriptor) return descriptor.error();
+    plugin->api = api;
+    plugin->descriptor = std::move(descriptor.value());
+    return plugin;
+}
+
+Result<std::shared_ptr<LoadedPlugin>> PluginLoader::load(const std::string& id) {
+    if (auto found = by_id_.find(id); found != by_id_.end()) return found->second;
+    std::vector<std::string> names{id + ".so"};
+    const std::string last = id.substr(id.rfind('.') + 1);
+    if (last != id) names.push_back(last + ".so");
+    std::string looked;
+    for (const auto& dir : directories_) {
+        for (const std::string& name : names) {
+            const auto file = dir / name;
+            looked += (looked.empty() ? "" : ", ") + file.string();
+            std::error_code ec;
+            if (!std::filesystem::is_regular_file(file, ec)) continue;
+            auto plugin = load_file(file);
+            if (!plugin) return plugin.error();
+            if (plugin.value()->descriptor.id != id)
+                return make_error(ErrorCode::InvalidInput,
+                                  fmt::format("{}: declares id \"{}\", not \"{}\"", file.string(),
+                                              plugin.value()->descriptor.id, id));
+            by_id_[id] = plugin.value();
+            return plugin;
+        }
+    }
+    return make_error(ErrorCode::FileNotFound,
+                      fmt::format("plugin \"{}\" not found; looked for {}", id,
+                                  looked.empty() ? "nothing (empty search path)" : looked));
+}
+
+}  // namespace acetate

@@ -1,0 +1,173 @@
+#include "render/effect_pipelines.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "core/sha256.hpp"
+#include "render/pipeline_pool.hpp"
+#include "vulkan/vulkan_context.hpp"
+
+namespace acetate {
+
+std::string input_variable(const std::string& input) {
+    std::string name = input;
+    for (char& c : name)
+        if (c == '.') c = '_';
+    return name;
+}
+
+std::string effect_glsl_preamble(const EffectDescriptor& effect,
+                                 const std::vector<std::string>& inputs) {
+    std::string out =
+        "#version 450\n"
+        "layout(set = 0, binding = 0, std140) uniform AcetateFrame {\n"
+        "    vec4 acetate_canvas;   // width, height, 1/width, 1/height\n"
+        "    vec4 acetate_output;   // this pass's output: width, height, 1/width, 1/height\n"
+        "    vec4 acetate_misc;     // time (s), floor index (-1: global)\n";
+    out += fmt::format("    vec4 acetate_params[{}];\n}};\n", std::max<size_t>(1, effect.params.size()));
+    out += "#define acetate_time (acetate_misc.x)\n#define acetate_floor (int(acetate_misc.y))\n";
+    for (size_t i = 0; i < effect.params.size(); ++i)
+        out += fmt::format("#define param_{} (acetate_params[{}].x)\n", effect.params[i].name, i);
+    for (size_t i = 0; i < inputs.size(); ++i)
+        out += fmt::format("layout(set = 0, binding = {}) uniform sampler2D {};\n",
+                           EffectPipelines::kFirstInputBinding + i, input_variable(inputs[i]));
+    out += fmt::format(
+        "layout(set = 0, binding = {}, std430) readonly buffer AcetateFloorData {{ float "
+        "floor_data[]; }};\n",
+        EffectPipelines::kFloorDataBinding);
+    out += "layout(location = 0) out vec4 out_color;\n#line 1\n";
+    return out;
+}
+
+Result<std::unique_ptr<EffectPipelines>> EffectPipelines::create(VulkanContext& context,
+                                                                 PipelinePool& pool) {
+    std::unique_ptr<EffectPipelines> out(new EffectPipelines(context, pool));
+    VkDevice device = context.device();
+    std::vector<VkDescriptorSetLayoutBinding> bindings;
+    bindings.push_back({kFrameBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                        VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    for (uint32_t i = 0; i < kMaxInputs; ++i)
+        bindings.push_back({kFirstInputBinding + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                            VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    bindings.push_back({kFloorDataBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                        VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+    set_info.bindingCount = uint32_t(bindings.size());
+    set_info.pBindings = bindings.data();
+    ACETATE_VK(vkCreateDescriptorSetLayout(device, &set_info, nullptr, &out->set_layout_));
+    VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layout_info.setLayoutCount = 1;
+    layout_info.pSetLayouts = &out->set_layout_;
+    ACETATE_VK(vkCreatePipelineLayout(device, &layout_info, nullptr, &out->layout_));
+
+    VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    sampler.magFilter = sampler.minFilter = VK_FILTER_LINEAR;
+    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW =
+        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    ACETATE_VK(vkCreateSampler(device, &sampler, nullptr, &out->sampler_));
+
+    auto blank = GpuImage::create(context, "effect.blank", 1, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
+                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                  false);
+    if (!blank) return blank.error();
+    out->blank_ = std::move(blank.value());
+    ACETATE_TRY(upload_image(context, out->blank_, ImageRGBA(1, 1)));
+    auto buffer = GpuBuffer::create(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!buffer) return buffer.error();
+    out->empty_buffer_ = std::move(buffer.value());
+    std::memset(out->empty_buffer_.mapped(), 0, 16);
+    return out;
+}
+
+EffectPipelines::~EffectPipelines() {
+    VkDevice device = context_.device();
+    if (sampler_) vkDestroySampler(device, sampler_, nullptr);
+    if (layout_) vkDestroyPipelineLayout(device, layout_, nullptr);
+    if (set_layout_) vkDestroyDescriptorSetLayout(device, set_layout_, nullptr);
+}
+
+Result<VkPipeline> EffectPipelines::pipeline(const std::vector<uint32_t>& fragment_spirv,
+                                             VkFormat format, uint32_t blend) {
+    const std::string key =
+        fmt::format("effect/{}/{}/{}",
+                    sha256_hex(fragment_spirv.data(), fragment_spirv.size() * sizeof(uint32_t)),
+                    int(format), blend);
+    return pool_.pipeline(key, [&](VkPipelineCache cache) -> Result<VkPipeline> {
+        auto vertex_spirv = pool_.spirv("fullscreen.vert", ShaderStage::Vertex,
+                                        embedded_shader("fullscreen.vert"));
+        if (!vertex_spirv) return vertex_spirv.error();
+        auto vert = pool_.module(*vertex_spirv.value());
+        if (!vert) return vert.error();
+        auto frag = pool_.module(fragment_spirv);
+        if (!frag) {
+            vkDestroyShaderModule(context_.device(), vert.value(), nullptr);
+            return frag.error();
+        }
+        VkPipelineShaderStageCreateInfo stages[2] = {};
+        stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
+                     VK_SHADER_STAGE_VERTEX_BIT, vert.value(), "main", nullptr};
+        stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
+                     VK_SHADER_STAGE_FRAGMENT_BIT, frag.value(), "main", nullptr};
+        VkPipelineVertexInputStateCreateInfo vertex_input{
+            VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+        VkPipelineInputAssemblyStateCreateInfo assembly{
+            VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+        assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+        VkPipelineViewportStateCreateInfo viewport{
+            VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+        viewport.viewportCount = viewport.scissorCount = 1;
+        VkPipelineRasterizationStateCreateInfo raster{
+            VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+        raster.cullMode = VK_CULL_MODE_NONE;
+        raster.lineWidth = 1.0f;
+        VkPipelineMultisampleStateCreateInfo multisample{
+            VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+        multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+        VkPipelineColorBlendAttachmentState attachment{};
+        attachment.colorWriteMask = 0xf;
+        if (blend == ACETATE_BLEND_ADD) {
+            attachment.blendEnable = VK_TRUE;
+            attachment.srcColorBlendFactor = attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+            attachment.srcAlphaBlendFactor = attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        }
+        VkPipelineColorBlendStateCreateInfo blend_state{
+            VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+        blend_state.attachmentCount = 1;
+        blend_state.pAttachments = &attachment;
+        const VkDynamicState dynamic[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+        VkPipelineDynamicStateCreateInfo dynamic_state{
+            VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+        dynamic_state.dynamicStateCount = 2;
+        dynamic_state.pDynamicStates = dynamic;
+        VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+        rendering.colorAttachmentCount = 1;
+        rendering.pColorAttachmentFormats = &format;
+        VkPipelineDepthStencilStateCreateInfo depth_stencil{
+            VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+        VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+        info.pNext = &rendering;
+        info.stageCount = 2;
+        info.pStages = stages;
+        info.pVertexInputState = &vertex_input;
+        info.pInputAssemblyState = &assembly;
+        info.pViewportState = &viewport;
+        info.pRasterizationState = &raster;
+        info.pMultisampleState = &multisample;
+        info.pDepthStencilState = &depth_stencil;
+        info.pColorBlendState = &blend_state;
+        info.pDynamicState = &dynamic_state;
+        info.layout = layout_;
+        VkPipeline pipeline = VK_NULL_HANDLE;
+        const VkResult r =
+            vkCreateGraphicsPipelines(context_.device(), cache, 1, &info, nullptr, &pipeline);
+        vkDestroyShaderModule(context_.device(), vert.value(), nullptr);
+        vkDestroyShaderModule(context_.device(), frag.value(), nullptr);
+        if (r != VK_SUCCESS) return vk_error("vkCreateGraphicsPipelines (effect pass)", r);
+        return pipeline;
+    });
+}
+
+}  // namespace acetate

@@ -1,0 +1,70 @@
+#pragma once
+// What every effect pass shares: one pipeline layout (a push-descriptor set with the frame
+// uniforms at binding 0, up to 8 inputs at bindings 1..8, floor_data at binding 9), a linear
+// clamp-to-edge sampler, and stand-ins for inputs a floor lacks (a transparent 1x1 texture for
+// a missing mask, a 4-float buffer for missing floor data). Pipelines live in the PipelinePool,
+// keyed by the SPIR-V's SHA-256, the output format and the blend.
+
+#include <vulkan/vulkan.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/result.hpp"
+#include "plugins/effect_descriptor.hpp"
+#include "vulkan/gpu_image.hpp"
+
+namespace acetate {
+
+class VulkanContext;
+class PipelinePool;
+
+class EffectPipelines {
+public:
+    static constexpr uint32_t kMaxInputs = 8;
+    static constexpr uint32_t kFrameBinding = 0;
+    static constexpr uint32_t kFirstInputBinding = 1;
+    static constexpr uint32_t kFloorDataBinding = 9;
+
+    static Result<std::unique_ptr<EffectPipelines>> create(VulkanContext& context,
+                                                           PipelinePool& pool);
+    ~EffectPipelines();
+
+    // The pipeline for a fullscreen pass with this fragment SPIR-V, output format and blend.
+    Result<VkPipeline> pipeline(const std::vector<uint32_t>& fragment_spirv, VkFormat format,
+                                uint32_t blend);
+
+    VkPipelineLayout layout() const { return layout_; }
+    VkSampler sampler() const { return sampler_; }
+    const GpuImage& blank_texture() const { return blank_; }
+    const GpuBuffer& empty_buffer() const { return empty_buffer_; }
+
+private:
+    EffectPipelines(VulkanContext& context, PipelinePool& pool) : context_(context), pool_(pool) {}
+    VulkanContext& context_;
+    PipelinePool& pool_;
+    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkSampler sampler_ = VK_NULL_HANDLE;
+    GpuImage blank_;
+    GpuBuffer empty_buffer_;
+};
+
+// The frame uniforms as the GLSL block AcetateFrame lays them out (std140).
+struct EffectFrameUniforms {
+    float canvas[4];   // width, height, 1/width, 1/height
+    float output[4];   // this pass's output size and its reciprocal
+    float misc[4];     // time in seconds, floor index (-1 for global), 0, 0
+    // followed by one vec4 per parameter (value in .x)
+};
+
+// The GLSL the host puts before a pass's source: version, the AcetateFrame block with a
+// param_<name> macro per parameter, one sampler2D per input, floor_data, out_color.
+std::string effect_glsl_preamble(const EffectDescriptor& effect,
+                                 const std::vector<std::string>& inputs);
+
+// The GLSL name of an input: '.' becomes '_' ("mask.water" -> "mask_water").
+std::string input_variable(const std::string& input);
+
+}  // namespace acetate

@@ -1,0 +1,84 @@
+#pragma once
+// Effect instances at run time: what build() declared, compiled into pipelines, with their
+// targets, uniforms and floor data on the GPU. Made at load (effects_at_load); recorded per
+// frame with no allocation, loading or compiling.
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/pixel_rect.hpp"
+#include "plugins/effect_graph.hpp"
+#include "plugins/plugin_loader.hpp"
+#include "render/frame_stats.hpp"
+#include "scene/scene.hpp"
+#include "vulkan/gpu_image.hpp"
+
+namespace acetate {
+
+class VulkanContext;
+class Renderer;
+
+struct EffectPassRuntime {
+    std::string label;               // "floor2.acetate.bloom.down3"
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    std::vector<std::string> inputs;
+    std::string output;              // "result" or a target name
+    uint32_t blend = 0;
+    GpuBuffer uniforms;              // EffectFrameUniforms + one vec4 per parameter
+};
+
+struct EffectInstance {
+    std::shared_ptr<LoadedPlugin> plugin;
+    std::string label;               // "floor2.acetate.lighting" / "global.acetate.bloom"
+    int64_t floor = -1;              // -1: global
+    bool expanding = false;
+    std::vector<float> params;       // resolved, clamped
+    std::vector<EffectPassRuntime> passes;
+    std::map<std::string, GpuImage*> targets;  // by declared name; owned by EffectTargets
+    GpuBuffer floor_data;            // empty buffer if the plugin set none
+    bool has_floor_data = false;
+};
+
+// Intermediate targets shared by instances of one plugin on different floors (floors run one
+// after the other, so one set serves them all): keyed by plugin id, name and divisor.
+class EffectTargets {
+public:
+    Result<GpuImage*> get(VulkanContext& context, const std::string& plugin_id,
+                          const GraphTarget& target, uint32_t canvas_width,
+                          uint32_t canvas_height, VkFormat format);
+    std::vector<const GpuImage*> images() const;
+
+private:
+    std::map<std::string, std::unique_ptr<GpuImage>> images_;
+};
+
+// Resolves an effect's parameters: defaults, then the preset, then the scene's params, each
+// clamped to its range. Errors name the scene file and field (unknown preset or parameter, a
+// value that is not a number).
+Result<std::vector<float>> resolve_params(const EffectDescriptor& descriptor, const EffectRef& ref,
+                                          const std::string& scene_file);
+
+// Loads the plugin an EffectRef names, builds its instance for `floor` (-1: global), compiles
+// its passes and allocates what they write.
+Result<std::unique_ptr<EffectInstance>> create_effect_instance(
+    Renderer& renderer, const SceneDesc& scene, const EffectRef& ref, int64_t floor,
+    VkFormat format, EffectTargets& targets);
+
+// What an instance reads and writes in one frame.
+struct EffectIo {
+    GpuImage* previous = nullptr;     // the floor (or accumulation) so far
+    GpuImage* result = nullptr;       // where "result" goes (the other ping-pong image)
+    const std::map<std::string, GpuImage>* masks = nullptr;  // the floor's own
+    PixelRect result_scissor;         // the area "result" passes shade
+    float time = 0;
+    uint32_t canvas_width = 0, canvas_height = 0;
+    bool warm_up = false;             // shade one pixel per pass (load-time pipeline warm-up)
+};
+
+// Records an instance's passes; counts passes and pixels shaded into `report`.
+void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& instance,
+                   const EffectIo& io, FloorFrameReport& report);
+
+}  // namespace acetate

@@ -1,0 +1,189 @@
+# sdk_install_test.cmake -- the installed SDK builds an out-of-tree plugin.
+#
+#   cmake -DBUILD_DIR=<acetate build> -DSOURCE_DIR=<acetate source> -DWORK_DIR=<scratch dir>
+#         [-DLIBDIR=lib] [-DCXX_COMPILER=<c++>] [-DGENERATOR=<generator>] [-DNM=<nm>]
+#         -P tests/sdk_install_test.cmake
+#
+# 1. cmake --install <BUILD_DIR> --prefix <WORK_DIR>/prefix, and checks the installed tree
+#    (CLI, headers, CMake package) and that the installed `acetate` runs (`--help`).
+# 2. Copies examples/out-of-tree-plugin to <WORK_DIR>/src, configures it in <WORK_DIR>/build
+#    with CMAKE_PREFIX_PATH=<WORK_DIR>/prefix (and checks find_package found that prefix), and
+#    builds it.
+# 3. Checks tint.so: its dynamic symbol table defines acetate_effect_entry_v1 and nothing else
+#    but the linker's standard symbols; it needs no Acetate library; it carries the source
+#    digest acetate_add_effect() computes from tint.cpp and tint.frag.
+# 4. Edits the copy of tint.frag, rebuilds, and checks the embedded-shader header and the
+#    digest follow.
+# Any failure ends the script with message(FATAL_ERROR), so ctest reports the test failed.
+cmake_minimum_required(VERSION 3.20)
+
+foreach(var BUILD_DIR SOURCE_DIR WORK_DIR)
+  if(NOT ${var})
+    message(FATAL_ERROR "sdk_install_test: -D${var}=... is required")
+  endif()
+  cmake_path(ABSOLUTE_PATH ${var} NORMALIZE)
+endforeach()
+if(NOT LIBDIR)
+  set(LIBDIR lib)
+endif()
+if(NOT NM)
+  find_program(NM nm)
+  if(NOT NM)
+    message(FATAL_ERROR "sdk_install_test: nm not found (pass -DNM=...)")
+  endif()
+endif()
+find_program(READELF readelf)
+
+set(prefix "${WORK_DIR}/prefix")
+set(example_src "${WORK_DIR}/src/out-of-tree-plugin")
+set(example_build "${WORK_DIR}/build")
+# Only these subfolders of WORK_DIR are ever removed.
+file(REMOVE_RECURSE "${prefix}" "${WORK_DIR}/src" "${example_build}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+
+# Runs a command; on failure prints its output and fails the test.
+function(run_step what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "sdk_install_test: ${what} failed (${rc}):\n  ${ARGN}\n${out}")
+  endif()
+  message(STATUS "ok: ${what}")
+  set(step_output "${out}" PARENT_SCOPE)
+endfunction()
+
+function(require_file path)
+  if(NOT EXISTS "${path}")
+    message(FATAL_ERROR "sdk_install_test: missing ${path}")
+  endif()
+endfunction()
+
+# The digest acetate_add_effect() defines: SHA-256 over the per-file SHA-256s, in order.
+function(expected_digest out_var)
+  set(hashes "")
+  foreach(file IN LISTS ARGN)
+    file(SHA256 "${file}" hash)
+    string(APPEND hashes "${hash}")
+  endforeach()
+  string(SHA256 digest "${hashes}")
+  set(${out_var} "${digest}" PARENT_SCOPE)
+endfunction()
+
+function(require_digest library digest)
+  file(STRINGS "${library}" found REGEX "^[0-9a-f]+$" LENGTH_MINIMUM 64)
+  if(NOT digest IN_LIST found)
+    message(FATAL_ERROR "sdk_install_test: ${library} does not carry the source digest ${digest}")
+  endif()
+endfunction()
+
+# ---- 1. Install, and check the installed tree ----
+require_file("${BUILD_DIR}/CMakeCache.txt")
+run_step("cmake --install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}")
+foreach(path
+    bin/acetate
+    include/acetate/effect.h
+    include/acetate/effect.hpp
+    include/acetate/version.h
+    ${LIBDIR}/cmake/Acetate/AcetateConfig.cmake
+    ${LIBDIR}/cmake/Acetate/AcetateConfigVersion.cmake
+    ${LIBDIR}/cmake/Acetate/AcetateTargets.cmake
+    ${LIBDIR}/cmake/Acetate/AcetateEffect.cmake
+    ${LIBDIR}/cmake/Acetate/AcetateEmbedGlsl.cmake)
+  require_file("${prefix}/${path}")
+endforeach()
+run_step("installed acetate --help" "${prefix}/bin/acetate" --help)
+
+# ---- 2. Build the out-of-tree example against the installed prefix ----
+file(COPY "${SOURCE_DIR}/examples/out-of-tree-plugin" DESTINATION "${WORK_DIR}/src")
+set(configure_args -S "${example_src}" -B "${example_build}" "-DCMAKE_PREFIX_PATH=${prefix}")
+if(GENERATOR)
+  list(APPEND configure_args -G "${GENERATOR}")
+endif()
+if(CXX_COMPILER)
+  list(APPEND configure_args "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}")
+endif()
+run_step("configure the out-of-tree plugin" "${CMAKE_COMMAND}" ${configure_args})
+file(STRINGS "${example_build}/CMakeCache.txt" acetate_dir REGEX "^Acetate_DIR:")
+string(REGEX REPLACE "^Acetate_DIR:[A-Z]+=" "" acetate_dir "${acetate_dir}")
+file(REAL_PATH "${prefix}/${LIBDIR}/cmake/Acetate" want_dir)
+if(EXISTS "${acetate_dir}")
+  file(REAL_PATH "${acetate_dir}" acetate_dir)
+endif()
+if(NOT acetate_dir STREQUAL want_dir)
+  message(FATAL_ERROR "sdk_install_test: find_package(Acetate) found \"${acetate_dir}\", "
+                      "not the installed package ${want_dir}")
+endif()
+run_step("build the out-of-tree plugin" "${CMAKE_COMMAND}" --build "${example_build}")
+
+# ---- 3. Check the plugin binary ----
+set(plugin "${example_build}/tint.so")
+require_file("${plugin}")
+if(EXISTS "${example_build}/libtint.so")
+  message(FATAL_ERROR "sdk_install_test: the plugin was written as libtint.so")
+endif()
+
+run_step("nm -D --defined-only tint.so" "${NM}" -D --defined-only "${plugin}")
+string(REPLACE "\n" ";" lines "${step_output}")
+set(exported "")
+set(entry_found FALSE)
+foreach(line IN LISTS lines)
+  if(line STREQUAL "")
+    continue()
+  endif()
+  # "<address> <type> <name>[@version]"
+  if(NOT line MATCHES "^[0-9a-fA-F]* *([A-Za-z]) ([^ @]+)")
+    message(FATAL_ERROR "sdk_install_test: cannot read nm line \"${line}\"")
+  endif()
+  set(type "${CMAKE_MATCH_1}")
+  set(symbol "${CMAKE_MATCH_2}")
+  if(symbol STREQUAL "acetate_effect_entry_v1")
+    if(NOT type STREQUAL "T")
+      message(FATAL_ERROR "sdk_install_test: acetate_effect_entry_v1 is not a global function "
+                          "(nm type ${type})")
+    endif()
+    set(entry_found TRUE)
+  elseif(NOT symbol MATCHES "^(_init|_fini|_edata|_end|__bss_start|__end__)$")
+    list(APPEND exported "${type} ${symbol}")
+  endif()
+endforeach()
+if(NOT entry_found)
+  message(FATAL_ERROR "sdk_install_test: tint.so does not export acetate_effect_entry_v1:\n${step_output}")
+endif()
+if(exported)
+  list(JOIN exported "\n  " exported)
+  message(FATAL_ERROR "sdk_install_test: tint.so exports more than its entry point:\n  ${exported}")
+endif()
+message(STATUS "ok: tint.so exports only acetate_effect_entry_v1")
+
+if(READELF)
+  run_step("readelf -d tint.so" "${READELF}" -d "${plugin}")
+  if(step_output MATCHES "NEEDED[^\n]*acetate")
+    message(FATAL_ERROR "sdk_install_test: tint.so links an Acetate library; a plugin is built "
+                        "against the headers only:\n${step_output}")
+  endif()
+endif()
+
+set(header "${example_build}/tint_acetate/tint_shaders.hpp")
+require_file("${header}")
+file(READ "${header}" text)
+if(NOT text MATCHES "inline constexpr std::string_view tint_frag = R\"acetate_glsl\\(")
+  message(FATAL_ERROR "sdk_install_test: ${header} does not define tint_frag:\n${text}")
+endif()
+expected_digest(digest "${example_src}/tint.cpp" "${example_src}/tint.frag")
+require_digest("${plugin}" "${digest}")
+message(STATUS "ok: tint.so carries the source digest ${digest}")
+
+# ---- 4. A changed shader is re-embedded and changes the digest ----
+file(APPEND "${example_src}/tint.frag" "// sdk_install_test: edited\n")
+run_step("rebuild after editing tint.frag" "${CMAKE_COMMAND}" --build "${example_build}")
+file(READ "${header}" text)
+if(NOT text MATCHES "// sdk_install_test: edited")
+  message(FATAL_ERROR "sdk_install_test: ${header} was not regenerated after tint.frag changed")
+endif()
+expected_digest(new_digest "${example_src}/tint.cpp" "${example_src}/tint.frag")
+if(new_digest STREQUAL digest)
+  message(FATAL_ERROR "sdk_install_test: the digest did not change with tint.frag")
+endif()
+require_digest("${plugin}" "${new_digest}")
+message(STATUS "ok: editing tint.frag regenerated tint_shaders.hpp and the digest")
+
+message(STATUS "sdk_install_test: passed")
