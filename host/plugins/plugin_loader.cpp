@@ -26,7 +26,7 @@ std::vector<std::filesystem::path> PluginLoader::default_directories(
     if (!ec) {
         const auto bin = exe.parent_path();
         out.push_back(bin.parent_path() / "lib" / "acetate" / "plugins");   // installed
-        out.push_back(bin.parent_path().parent_path() / "plugins");           // build tree
+        out.push_back(bin.parent_path() / "plugins");  // build tree: build/host/acetate
     }
     return out;
 }
