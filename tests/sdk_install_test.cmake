@@ -2,6 +2,7 @@
 #
 #   cmake -DBUILD_DIR=<acetate build> -DSOURCE_DIR=<acetate source> -DWORK_DIR=<scratch dir>
 #         [-DLIBDIR=lib] [-DCXX_COMPILER=<c++>] [-DGENERATOR=<generator>] [-DNM=<nm>]
+#         [-DRENDER=OFF]
 #         -P tests/sdk_install_test.cmake
 #
 # 1. cmake --install <BUILD_DIR> --prefix <WORK_DIR>/prefix, and checks the installed tree
@@ -12,7 +13,9 @@
 # 3. Checks tint.so: its dynamic symbol table defines acetate_effect_entry_v1 and nothing else
 #    but the linker's standard symbols; it needs no Acetate library; it carries the source
 #    digest acetate_add_effect() computes from tint.cpp and tint.frag.
-# 4. Edits the copy of tint.frag, rebuilds, and checks the embedded-shader header and the
+# 4. Renders examples/out-of-tree-plugin/scene.json with the installed CLI and the plugin
+#    (validation layers on; no premultiplied violations). Skipped with -DRENDER=OFF.
+# 5. Edits the copy of tint.frag, rebuilds, and checks the embedded-shader header and the
 #    digest follow.
 # Any failure ends the script with message(FATAL_ERROR), so ctest reports the test failed.
 cmake_minimum_required(VERSION 3.20)
@@ -172,7 +175,23 @@ expected_digest(digest "${example_src}/tint.cpp" "${example_src}/tint.frag")
 require_digest("${plugin}" "${digest}")
 message(STATUS "ok: tint.so carries the source digest ${digest}")
 
-# ---- 4. A changed shader is re-embedded and changes the digest ----
+# ---- 4. The installed CLI renders the example scene with the plugin (skip with -DRENDER=OFF) ----
+if(NOT DEFINED RENDER OR RENDER)
+  set(image "${WORK_DIR}/tint.png")
+  file(REMOVE "${image}")
+  file(MAKE_DIRECTORY "${WORK_DIR}/cache/mesa" "${WORK_DIR}/cache/xdg")
+  run_step("acetate render scene.json --plugin-path <build>"
+    "${CMAKE_COMMAND}" -E env ACETATE_VALIDATION=1 "MESA_SHADER_CACHE_DIR=${WORK_DIR}/cache/mesa"
+    "XDG_CACHE_HOME=${WORK_DIR}/cache/xdg"
+    "${prefix}/bin/acetate" render "${SOURCE_DIR}/examples/out-of-tree-plugin/scene.json"
+    -o "${image}" --plugin-path "${example_build}")
+  require_file("${image}")
+  if(NOT step_output MATCHES " 0 violations")
+    message(FATAL_ERROR "sdk_install_test: the render reported premultiplied violations:\n${step_output}")
+  endif()
+endif()
+
+# ---- 5. A changed shader is re-embedded and changes the digest ----
 file(APPEND "${example_src}/tint.frag" "// sdk_install_test: edited\n")
 run_step("rebuild after editing tint.frag" "${CMAKE_COMMAND}" --build "${example_build}")
 file(READ "${header}" text)
