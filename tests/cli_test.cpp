@@ -269,10 +269,10 @@ TEST(CliBadInput, SceneNamingAFloorPlugin) {
 
 TEST(CliBadInput, SceneNamingAGlobalPlugin) {
     SceneText scene;
-    scene.root_extra = R"(, "global_effects": [ { "plugin": "acetate.bloom" } ])";
+    scene.root_extra = R"(, "global_effects": [ { "plugin": "com.example.haze" } ])";
     const fs::path dir = write_scene(scene);
     const CliRun run = run_acetate(dir, "render scene.json -o out.png");
-    expect_refused(run, {"scene.json", "global_effects[0]", "acetate.bloom"});
+    expect_refused(run, {"scene.json", "global_effects[0]", "com.example.haze"});
 }
 
 TEST(CliBadInput, BadView) {

@@ -85,6 +85,11 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d, const
         if (p.default_value < p.min_value || p.default_value > p.max_value)
             return bad(where, fmt::format("{}: default {} is outside [{}, {}]", field,
                                           p.default_value, p.min_value, p.max_value));
+        const bool whole = std::floor(p.default_value) == p.default_value;
+        if (p.type != ACETATE_PARAM_FLOAT && !whole)
+            return bad(where, fmt::format("{}: default {} of an int/bool parameter is not a whole "
+                                          "number",
+                                          field, p.default_value));
         out.params.push_back({name, p.description ? p.description : "", p.type, p.default_value,
                               p.min_value, p.max_value});
     }

@@ -58,8 +58,9 @@ AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
         if (earlier.name == name) return refuse(g, pass + ": declared twice");
     if (p->kind != ACETATE_PASS_FULLSCREEN)
         return refuse(g, fmt::format("{}: unknown kind {}", pass, p->kind));
-    if (bool(p->glsl) == bool(p->spirv && p->spirv_word_count))
-        return refuse(g, pass + ": give exactly one of glsl and spirv");
+    const bool has_glsl = p->glsl && *p->glsl;
+    if (has_glsl == bool(p->spirv && p->spirv_word_count))
+        return refuse(g, pass + ": give exactly one of glsl (non-empty) and spirv");
     if (p->input_count > 8 || (p->input_count && !p->inputs))
         return refuse(g, fmt::format("{}: {} inputs (at most 8, and inputs must not be NULL)",
                                      pass, p->input_count));
@@ -68,7 +69,7 @@ AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
     GraphPass out;
     out.name = name;
     out.blend = p->blend;
-    if (p->glsl) out.glsl = p->glsl;
+    if (has_glsl) out.glsl = p->glsl;
     else out.spirv.assign(p->spirv, p->spirv + p->spirv_word_count);
     for (uint32_t i = 0; i < p->input_count; ++i) {
         const std::string input = p->inputs[i] ? p->inputs[i] : "";
@@ -98,6 +99,11 @@ AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
                                      pass, out.output));
     if (std::count(out.inputs.begin(), out.inputs.end(), out.output))
         return refuse(g, fmt::format("{} reads and writes \"{}\"", pass, out.output));
+    // Targets are shared and not cleared between frames: adding onto one before any pass of
+    // this instance replaced it would read what another floor or frame left there.
+    if (out.blend == ACETATE_BLEND_ADD && !g->written.count(out.output))
+        return refuse(g, fmt::format("{} adds to \"{}\" before any pass replaced it", pass,
+                                     out.output));
     g->written.insert(out.output);
     g->graph.passes.push_back(std::move(out));
     return ACETATE_OK;

@@ -25,7 +25,7 @@ std::vector<std::filesystem::path> PluginLoader::default_directories(
     const std::filesystem::path exe = boost::dll::program_location(ec).string();
     if (!ec) {
         const auto bin = exe.parent_path();
-        out.push_back(bin.parent_path() / "lib" / "acetate" / "plugins");   // installed
+        out.push_back(bin.parent_path() / ACETATE_INSTALL_LIBDIR / "acetate" / "plugins");  // installed
         out.push_back(bin.parent_path() / "plugins");  // build tree: build/host/acetate
     }
     return out;

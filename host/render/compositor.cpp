@@ -156,6 +156,14 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
         if (options.inject) stages.push_back(out->inject_stage());
     }
     for (Stage stage : stages) ACETATE_TRY(out->pipelines_->ensure(stage, options.format));
+    // The planner's view of each floor, fixed at load. A floor with a coverage-expanding effect
+    // may draw anywhere (a glow past its tiles), so for planning it covers the whole canvas.
+    out->geometry_ = out->resources_->geometry();
+    for (size_t f = 0; f < out->floor_effects_.size(); ++f) {
+        const auto& effects = out->floor_effects_[f];
+        if (std::any_of(effects.begin(), effects.end(), [](const auto& e) { return e->expanding; }))
+            out->geometry_[f].coverage = {0, 0, int64_t(scene.width), int64_t(scene.height)};
+    }
     ACETATE_TRY(out->warm_pipelines());
 
     const ResourceCounters used = delta(context.counters(), before);
@@ -310,6 +318,7 @@ Result<void> Compositor::warm_pipelines() {
             io.previous = &output_;
             io.result = &result;
             io.masks = masks;
+            io.blank_mask = resources_->blank_mask();
             io.result_scissor = PixelRect{0, 0, 1, 1};
             io.canvas_width = width_;
             io.canvas_height = height_;
@@ -464,6 +473,7 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
             io.previous = current;
             io.result = next;
             io.masks = &resources_->floors()[step.floor].masks;
+            io.blank_mask = resources_->blank_mask();
             io.result_scissor = effect->expanding || expanding ? canvas : step.scissor;
             io.time = time;
             io.canvas_width = width_;
@@ -504,6 +514,11 @@ void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, f
     if (global_effects_.empty()) return;
     GpuImage* current = &accumulation_;
     GpuImage* next = &*accumulation_pingpong_;
+    // Like the floor ping-pong: "result" starts transparent every frame.
+    next->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, next->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
     FloorFrameReport report;
     report.floor = UINT32_MAX;
     report.path = "global";
@@ -611,7 +626,7 @@ Result<FrameStats> Compositor::render(uint32_t active_floor, float time) {
     PlanOptions plan_options = options_.plan;
     if (view_reads_floor_target(options_.view)) plan_options.force_target_floor = active_floor;
     if (options_.inject) plan_options.draw_direct = false;  // the hook acts like an effect
-    last_plan_ = plan_frame(width_, height_, resources_->geometry(), active_floor, plan_options);
+    last_plan_ = plan_frame(width_, height_, geometry_, active_floor, plan_options);
 
     FrameStats stats;
     stats.active_floor = active_floor;

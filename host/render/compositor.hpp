@@ -125,6 +125,7 @@ private:
     std::optional<GpuImage> floor_stencil_;
     std::optional<GpuImage> floor_pingpong_;  // only when some floor has effects
     GpuBuffer violations_;
+    std::vector<FloorGeometry> geometry_;  // what the planner works from (fixed at load)
     LoadStats load_stats_;
     FramePlan last_plan_;
 };

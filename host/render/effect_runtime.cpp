@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "render/effect_pipelines.hpp"
@@ -47,6 +48,8 @@ Result<std::vector<float>> resolve_params(const EffectDescriptor& d, const Effec
     for (const EffectParam& p : d.params) values.push_back(p.default_value);
     auto set = [&](const std::string& name, float value) {
         const EffectParam& p = d.params[size_t(d.param_index(name))];
+        if (p.type == ACETATE_PARAM_INT) value = std::round(value);
+        if (p.type == ACETATE_PARAM_BOOL) value = value >= 0.5f ? 1.0f : 0.0f;
         values[size_t(d.param_index(name))] = std::clamp(value, p.min_value, p.max_value);
     };
     if (!ref.preset.empty()) {
@@ -148,6 +151,7 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
         return make_error(graph.error().code,
                           fmt::format("{}: {}: {}", file, ref.where, graph.error().message));
 
+    for (const std::string& line : graph->log) std::fprintf(stderr, "acetate: log: %s\n", line.c_str());
     for (const GraphTarget& t : graph->targets) {
         auto image = targets.get(context, d.id, t, scene.width, scene.height, format);
         if (!image) return image.error();
@@ -226,7 +230,7 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
                 image = io.previous;
             } else if (input.rfind("mask.", 0) == 0) {
                 // A floor without this mask kind reads a transparent texture.
-                image = &pipelines.blank_texture();
+                image = io.blank_mask ? io.blank_mask : &pipelines.blank_texture();
                 if (io.masks)
                     if (auto found = io.masks->find(input.substr(5)); found != io.masks->end())
                         image = &found->second;

@@ -71,6 +71,7 @@ struct EffectIo {
     GpuImage* previous = nullptr;     // the floor (or accumulation) so far
     GpuImage* result = nullptr;       // where "result" goes (the other ping-pong image)
     const std::map<std::string, GpuImage>* masks = nullptr;  // the floor's own
+    const GpuImage* blank_mask = nullptr;  // scene-size, transparent: for kinds the floor lacks
     PixelRect result_scissor;         // the area "result" passes shade
     float time = 0;
     uint32_t canvas_width = 0, canvas_height = 0;

@@ -112,7 +112,19 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
             const bool present = std::any_of(
                 scene.floors[f].tiles.begin(), scene.floors[f].tiles.end(),
                 [&](const TileDesc& t) { return t.masks.count(kind) != 0; });
-            if (!present) continue;
+            if (!present) {
+                if (!out->blank_mask_) {
+                    auto blank = GpuImage::create(
+                        context, "mask.blank", scene.width, scene.height,
+                        VK_FORMAT_R16G16B16A16_SFLOAT,
+                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, false);
+                    if (!blank) return blank.error();
+                    out->blank_mask_ = std::move(blank.value());
+                    ACETATE_TRY(upload_image(context, *out->blank_mask_,
+                                             ImageRGBA(scene.width, scene.height)));
+                }
+                continue;
+            }
             const ImageRGBA composite = composite_floor_mask(scene.floors[f], kind, scene.width,
                                                              scene.height, mask_images);
             auto image = GpuImage::create(
@@ -138,6 +150,7 @@ std::vector<const GpuImage*> SceneResources::images() const {
     for (const auto& t : textures_) out.push_back(t.get());
     for (const LoadedFloor& f : floors_)
         for (const auto& [kind, image] : f.masks) out.push_back(&image);
+    if (blank_mask_) out.push_back(&*blank_mask_);
     return out;
 }
 

@@ -4,6 +4,7 @@
 // geometry the frame planner works from. Built once at load; a floor switch touches none of it.
 
 #include <map>
+#include <optional>
 #include <memory>
 #include <set>
 #include <string>
@@ -47,6 +48,9 @@ public:
     // stage drops them (no colour without coverage), so they are reported here, once.
     uint64_t tile_texel_violations() const { return tile_texel_violations_; }
     std::vector<FloorGeometry> geometry() const;
+    // A transparent scene-size mask for floors without a kind some effect reads (so a shader
+    // may texelFetch at canvas coordinates); null when every floor has every needed kind.
+    const GpuImage* blank_mask() const { return blank_mask_ ? &*blank_mask_ : nullptr; }
     // Every GPU image held (textures and masks), for "what does the host hold" reports.
     std::vector<const GpuImage*> images() const;
 
@@ -54,6 +58,7 @@ private:
     std::vector<std::unique_ptr<GpuImage>> textures_;
     std::vector<LoadedFloor> floors_;
     uint64_t tile_texel_violations_ = 0;
+    std::optional<GpuImage> blank_mask_;
 };
 
 }  // namespace acetate
