@@ -30,6 +30,7 @@
 
 #include "render/compositor.hpp"
 #include "render/host_pipelines.hpp"
+#include "render/renderer.hpp"
 #include "render/scene_resources.hpp"
 #include "scene/image_io.hpp"
 #include "scene/scene.hpp"
@@ -77,9 +78,13 @@ double median(std::vector<double> v) {
 // Process-wide state
 
 std::unique_ptr<VulkanContext> g_context;
+// Process-wide pipelines and plugin loader; no disk pipeline cache, no plugin directories (the
+// benchmark scenes have no effects).
+std::unique_ptr<Renderer> g_renderer;
 std::filesystem::path g_scratch;
 
 VulkanContext& context() { return *g_context; }
+Renderer& renderer() { return *g_renderer; }
 
 // ---------------------------------------------------------------------------------------------
 // Scenes built in code
@@ -176,29 +181,32 @@ SceneDesc make_tenth_scene() {
 // ---------------------------------------------------------------------------------------------
 // Compositors
 
+// Loads and renders kWarmupFrames frames. (Load and first-frame times of a fresh process are
+// benchmarks/load_times.sh's business: here pipelines are shared by every scene of the process.)
 std::unique_ptr<Compositor> load_warm(const SceneDesc& scene, const CompositorOptions& options) {
-    auto compositor = must(Compositor::load(context(), scene, options), "Compositor::load");
+    auto compositor = must(Compositor::load(renderer(), scene, options), "Compositor::load");
     for (int i = 0; i < kWarmupFrames; ++i)
         must(compositor->render(scene.active_floor), "warm-up frame");
     return compositor;
 }
 
-// One compositor cached at a time: repetitions of a benchmark run back to back.
+// Compositors stay loaded for the whole run, so that repetitions of different benchmarks can be
+// interleaved (--benchmark_enable_random_interleaving) without reloading.
 struct CachedCompositor {
-    std::string key;
     SceneDesc scene;
     std::unique_ptr<Compositor> compositor;
+    double load_ms = 0;
 };
-CachedCompositor g_cached;
+std::map<std::string, CachedCompositor> g_cached;
 
-Compositor& cached_compositor(const FloorScene& spec) {
-    if (g_cached.key != spec.key() || !g_cached.compositor) {
-        g_cached.compositor.reset();
-        g_cached.scene = make_floor_scene(spec);
-        g_cached.compositor = load_warm(g_cached.scene, {});
-        g_cached.key = spec.key();
+CachedCompositor& cached_compositor(const FloorScene& spec) {
+    CachedCompositor& cached = g_cached[spec.key()];
+    if (!cached.compositor) {
+        cached.scene = make_floor_scene(spec);
+        cached.compositor = load_warm(cached.scene, {});
+        cached.load_ms = cached.compositor->load_stats().milliseconds;
     }
-    return *g_cached.compositor;
+    return cached;
 }
 
 // Times one Compositor::render.
@@ -214,9 +222,9 @@ double host_frame(Compositor& compositor, uint32_t active, FrameStats* stats = n
 // ---------------------------------------------------------------------------------------------
 // The raw baseline: the same draws as the compositor's plan, recorded by hand.
 //
-// Same pipelines (HostPipelines, TileToAccum and Output), the same tile images (uploaded by
-// SceneResources from the same files, in the same format), targets of the same size, format and
-// usage. One command buffer and fence created once and re-recorded every frame; fixed barriers
+// The same pipelines (the Renderer's HostPipelines, TileToAccum and Output: the very VkPipelines
+// the compositor binds), the same tile images (uploaded by SceneResources from the same files, in
+// the same format), targets of the same size, format and usage. One command buffer and fence created once and re-recorded every frame; fixed barriers
 // (no layout tracking); no planning, no stats. Two shapes:
 //   one_pass = true:  clear, one rendering pass over the accumulation with every tile draw (the
 //                     scissor set per floor), output pass. The minimum a hand-written renderer
@@ -226,14 +234,15 @@ double host_frame(Compositor& compositor, uint32_t active, FrameStats* stats = n
 class RawRenderer {
 public:
     RawRenderer(const SceneDesc& scene, const FramePlan& plan, VkFormat format)
-        : scene_(scene), plan_(plan) {
+        : scene_(scene), plan_(plan), format_(format) {
         VulkanContext& ctx = context();
         for (const FloorStep& step : plan_.steps)
             if (step.path == FloorPath::ThroughTarget)
                 die("raw baseline: only floors drawn directly are mirrored");
         resources_ = must(SceneResources::load(ctx, scene, format, {}), "SceneResources::load");
-        pipelines_ = must(HostPipelines::create(ctx, format, {Stage::TileToAccum, Stage::Output}),
-                          "HostPipelines::create");
+        pipelines_ = &renderer().host_pipelines();
+        must(pipelines_->ensure(Stage::TileToAccum, format), "HostPipelines::ensure");
+        must(pipelines_->ensure(Stage::Output, format), "HostPipelines::ensure");
         const VkImageUsageFlags usage =
             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
             VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -243,6 +252,11 @@ public:
         output_ = must(GpuImage::create(ctx, "raw.output", scene.width, scene.height, format,
                                         usage, true),
                        "raw output");
+        // Every frame leaves the output as a colour attachment; tell its GpuImage once, so
+        // read_output() (read_back_image) starts from the right layout.
+        must(ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+            output_.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+        }), "raw output layout");
         VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pool.queueFamilyIndex = ctx.queue_family();
         vk_check(vkCreateCommandPool(ctx.device(), &pool, nullptr, &pool_), "vkCreateCommandPool");
@@ -285,6 +299,11 @@ public:
         vk_check(vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
         vk_check(vkResetFences(ctx.device(), 1, &fence_), "vkResetFences");
         return ms_since(start);
+    }
+
+    ImageRGBA read_output() {
+        // read_back_image restores the layout it finds; the output is left as an attachment.
+        return must(read_back_image(context(), output_), "reading the raw output");
     }
 
 private:
@@ -388,7 +407,7 @@ private:
             if (!area.empty()) {
                 begin_pass(accumulation_.view(), area, VK_ATTACHMENT_LOAD_OP_LOAD);
                 vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                  pipelines_->pipeline(Stage::TileToAccum));
+                                  pipelines_->pipeline(Stage::TileToAccum, format_));
                 for (const FloorStep& step : plan_.steps)
                     if (step.path == FloorPath::Direct) draw_floor(step);
                 vkCmdEndRendering(cmd_);
@@ -401,7 +420,7 @@ private:
                 layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
                 begin_pass(accumulation_.view(), step.scissor, VK_ATTACHMENT_LOAD_OP_LOAD);
                 vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                  pipelines_->pipeline(Stage::TileToAccum));
+                                  pipelines_->pipeline(Stage::TileToAccum, format_));
                 draw_floor(step);
                 vkCmdEndRendering(cmd_);
             }
@@ -417,7 +436,7 @@ private:
         const VkRect2D scissor = vk_rect(all);
         vkCmdSetScissor(cmd_, 0, 1, &scissor);
         vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                          pipelines_->pipeline(Stage::Output));
+                          pipelines_->pipeline(Stage::Output, format_));
         push_images(accumulation_.view(), accumulation_.view(), pipelines_->nearest_sampler(), 2);
         StagePushConstants pc;
         std::copy(scene_.background.begin(), scene_.background.end(), pc.tint);
@@ -432,7 +451,8 @@ private:
     SceneDesc scene_;
     FramePlan plan_;
     std::unique_ptr<SceneResources> resources_;
-    std::unique_ptr<HostPipelines> pipelines_;
+    VkFormat format_;
+    HostPipelines* pipelines_ = nullptr;
     GpuImage accumulation_, output_;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
@@ -446,6 +466,7 @@ struct FrameRow {
     std::vector<double> ms;
     uint64_t pixels_shaded = 0;
     uint32_t passes = 0;
+    double load_ms = 0;  // Compositor::load: mostly EXR decode and upload
 };
 std::map<std::string, FrameRow> g_frame_rows;  // by benchmark name, in name order
 std::vector<std::string> g_frame_order;
@@ -483,7 +504,8 @@ std::string paths_of(const FrameStats& stats) {
 
 // a. Frame time of Compositor::render for one scene.
 void bm_frame(benchmark::State& state, FloorScene spec, std::string name) {
-    Compositor& compositor = cached_compositor(spec);
+    CachedCompositor& cached = cached_compositor(spec);
+    Compositor& compositor = *cached.compositor;
     const uint32_t active = spec.floors - 1;
     FrameStats stats;
     double total_ms = 0;
@@ -496,6 +518,7 @@ void bm_frame(benchmark::State& state, FloorScene spec, std::string name) {
     }
     row.pixels_shaded = stats.pixels_shaded;
     row.passes = stats.passes;
+    row.load_ms = cached.load_ms;
     state.counters["pixels_shaded"] = double(stats.pixels_shaded);
     state.counters["passes"] = double(stats.passes);
     state.counters["Mpx_per_s"] =
@@ -507,9 +530,16 @@ void bm_frame(benchmark::State& state, FloorScene spec, std::string name) {
 void bm_overhead(benchmark::State& state, std::string scene_name,
                  std::function<SceneDesc()> make_scene) {
     const SceneDesc scene = make_scene();
-    g_cached.compositor.reset();  // hold one scene's images at a time
     std::unique_ptr<Compositor> compositor = load_warm(scene, {});
     RawRenderer raw(scene, compositor->last_plan(), CompositorOptions{}.format);
+    // The baseline must draw the same image, or the comparison means nothing.
+    const ImageRGBA host_image = must(compositor->read_output(), "reading the host's output");
+    const ImageRGBA raw_image = raw.read_output();
+    double max_diff = 0;
+    for (size_t i = 0; i < host_image.pixels.size(); ++i)
+        max_diff = std::max(max_diff, double(std::fabs(host_image.pixels[i] - raw_image.pixels[i])));
+    if (max_diff > 1e-3)
+        die(fmt::format("raw baseline draws a different image (max difference {})", max_diff));
     std::vector<double> host_ms, raw_ms, raw_passes_ms;
     FrameStats stats;
     uint64_t round = 0;
@@ -540,7 +570,6 @@ void bm_overhead(benchmark::State& state, std::string scene_name,
 // c. The planner's optimisations on vs off on the "tenth" scene, interleaved.
 void bm_optimisations(benchmark::State& state) {
     const SceneDesc scene = make_tenth_scene();
-    g_cached.compositor.reset();
     struct Config {
         std::string name;
         PlanOptions plan;
@@ -560,6 +589,7 @@ void bm_optimisations(benchmark::State& state) {
     add("scissor_to_coverage off", false, true, true);
     add("cull_hidden_floors off", true, false, true);
     add("draw_direct off", true, true, false);
+    add("draw_direct + scissor_to_coverage off", false, true, false);
     add("all off", false, false, false);
     for (Config& c : configs) {
         CompositorOptions options;
@@ -598,16 +628,18 @@ void print_summary() {
     if (!g_frame_order.empty()) {
         std::printf("\n### Frame time (Compositor::render, default options)\n\n");
         std::printf("| benchmark | frames | median ms | min ms | max ms | passes | pixels shaded "
-                    "| Mpx/s (median) |\n|---|---|---|---|---|---|---|---|\n");
+                    "| Mpx/s (median) | load ms |\n"
+                    "|---|---|---|---|---|---|---|---|---|\n");
         for (const std::string& name : g_frame_order) {
             const FrameRow& row = g_frame_rows[name];
             if (row.ms.empty()) continue;
             const double med = median(row.ms);
-            std::printf("| %s | %zu | %.2f | %.2f | %.2f | %u | %llu | %.0f |\n", name.c_str(),
-                        row.ms.size(), med, *std::min_element(row.ms.begin(), row.ms.end()),
+            std::printf("| %s | %zu | %.2f | %.2f | %.2f | %u | %llu | %.0f | %.0f |\n",
+                        name.c_str(), row.ms.size(), med,
+                        *std::min_element(row.ms.begin(), row.ms.end()),
                         *std::max_element(row.ms.begin(), row.ms.end()), row.passes,
                         (unsigned long long)row.pixels_shaded,
-                        double(row.pixels_shaded) / (med / 1000.0) / 1e6);
+                        double(row.pixels_shaded) / (med / 1000.0) / 1e6, row.load_ms);
         }
     }
     if (!g_overhead_rows.empty()) {
@@ -649,8 +681,12 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 
     ContextOptions options = ContextOptions::from_environment();
-    options.validation = false;  // benchmarks measure the renderer, not the layers
+    // Benchmarks measure the renderer, not the layers. ACETATE_BENCHMARK_VALIDATION=1 turns them
+    // on to check the raw baseline's Vulkan usage (timings are then meaningless).
+    const char* check = std::getenv("ACETATE_BENCHMARK_VALIDATION");
+    options.validation = check && std::string(check) == "1";
     g_context = must(VulkanContext::create(options), "VulkanContext::create");
+    g_renderer = must(Renderer::create(*g_context, RendererOptions{}), "Renderer::create");
     g_scratch = std::filesystem::temp_directory_path() /
                 fmt::format("acetate-frame-benchmark-{}", ::getpid());
     std::filesystem::create_directories(g_scratch);
@@ -680,7 +716,7 @@ int main(int argc, char** argv) {
         benchmark::RegisterBenchmark(("overhead/" + label).c_str(), bm_overhead, label, make)
             ->UseManualTime()
             ->Unit(benchmark::kMillisecond)
-            ->Iterations(30);
+            ->Iterations(40);
     };
     for (uint32_t n : {1u, 4u, 16u}) {
         const FloorScene spec{1920, 1080, n, false};
@@ -696,10 +732,19 @@ int main(int argc, char** argv) {
 
     benchmark::RunSpecifiedBenchmarks();
     print_summary();
+    int status = 0;
+    if (g_context->validation_enabled()) {
+        const auto& messages = g_context->validation_messages();
+        std::printf("\nvalidation messages: %zu\n", messages.size());
+        for (size_t i = 0; i < messages.size() && i < 5; ++i)
+            std::printf("  %s\n", messages[i].c_str());
+        status = messages.empty() ? 0 : 1;
+    }
 
-    g_cached.compositor.reset();
+    g_cached.clear();
+    g_renderer.reset();
     g_context.reset();
     std::filesystem::remove_all(g_scratch);
     benchmark::Shutdown();
-    return 0;
+    return status;
 }
