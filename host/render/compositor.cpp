@@ -242,9 +242,13 @@ Result<void> Compositor::create_targets(const SceneDesc& scene) {
 // every pipeline draws one pixel here and the first real frame does not stall.
 Result<void> Compositor::warm_pipelines() {
     std::memset(violations_.mapped(), 0, violations_.size());
-    const GpuImage* any_tile = nullptr;
+    // lavapipe keys its shader variants on texture state too (a power-of-two texture and
+    // another size compile apart), so the tile stages draw once with every distinct texture.
+    std::vector<const GpuImage*> textures;
     for (const LoadedFloor& f : resources_->floors())
-        if (!f.tiles.empty()) any_tile = f.tiles.front().texture;
+        for (const LoadedTile& t : f.tiles)
+            if (std::find(textures.begin(), textures.end(), t.texture) == textures.end())
+                textures.push_back(t.texture);
     const PixelRect pixel{0, 0, 1, 1};
     const bool has_depth = context_.stencil_format() != VK_FORMAT_S8_UINT;
     auto draw_one_pixel = [&](VkCommandBuffer cmd, Stage stage, GpuImage& target, bool stencil,
@@ -269,7 +273,10 @@ Result<void> Compositor::warm_pipelines() {
         }
         vkCmdBeginRendering(cmd, &info);
         set_scissor(cmd, pixel);
-        bind(cmd, stage, input, input, pipelines_->linear_sampler());
+        // The same sampler as the real draws: lavapipe's shader variants depend on it too.
+        const bool is_tile_stage = stage == Stage::TileToTarget || stage == Stage::TileToAccum;
+        bind(cmd, stage, input, input,
+             is_tile_stage ? pipelines_->linear_sampler() : pipelines_->nearest_sampler());
         StagePushConstants push;
         push.rect[2] = push.rect[3] = 1;
         push.canvas[0] = float(width_);
@@ -277,8 +284,7 @@ Result<void> Compositor::warm_pipelines() {
         vkCmdPushConstants(cmd, pipelines_->layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(push), &push);
-        const bool is_tile = stage == Stage::TileToTarget || stage == Stage::TileToAccum;
-        vkCmdDraw(cmd, is_tile ? 4 : 3, 1, 0, 0);
+        vkCmdDraw(cmd, is_tile_stage ? 4 : 3, 1, 0, 0);
         vkCmdEndRendering(cmd);
     };
     return context_.submit_and_wait([&](VkCommandBuffer cmd) {
@@ -301,12 +307,13 @@ Result<void> Compositor::warm_pipelines() {
         }
         // Inputs are sampled while another image is the attachment: the output is drawn with
         // the accumulation as input, everything else with a tile texture or the output.
-        if (any_tile && options_.plan.draw_direct)
-            draw_one_pixel(cmd, Stage::TileToAccum, accumulation_, false, any_tile->view());
+        if (options_.plan.draw_direct)
+            for (const GpuImage* texture : textures)
+                draw_one_pixel(cmd, Stage::TileToAccum, accumulation_, false, texture->view());
         output_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         if (floor_color_) {
-            if (any_tile)
-                draw_one_pixel(cmd, Stage::TileToTarget, *floor_color_, true, any_tile->view());
+            for (const GpuImage* texture : textures)
+                draw_one_pixel(cmd, Stage::TileToTarget, *floor_color_, true, texture->view());
             if (options_.inject) draw_one_pixel(cmd, inject_stage(), *floor_color_, true, output_.view());
             draw_one_pixel(cmd, Stage::Composite, accumulation_, true, output_.view());
         }
