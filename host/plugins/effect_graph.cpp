@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 
@@ -56,19 +57,26 @@ AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
     if (!is_simple_name(name)) return refuse(g, pass + ": name must match [a-z][a-z0-9_]*");
     for (const GraphPass& earlier : g->graph.passes)
         if (earlier.name == name) return refuse(g, pass + ": declared twice");
-    if (p->kind != ACETATE_PASS_FULLSCREEN)
+    if (p->kind != ACETATE_PASS_FULLSCREEN && p->kind != ACETATE_PASS_INSTANCED_QUADS)
         return refuse(g, fmt::format("{}: unknown kind {}", pass, p->kind));
+    const bool instanced = p->kind == ACETATE_PASS_INSTANCED_QUADS;
+    if (instanced && (p->instance_count == 0 || p->instance_count > (1u << 20)))
+        return refuse(g, fmt::format("{}: instance_count {} is not in 1..1048576", pass,
+                                     p->instance_count));
     const bool has_glsl = p->glsl && *p->glsl;
     if (has_glsl == bool(p->spirv && p->spirv_word_count))
         return refuse(g, pass + ": give exactly one of glsl (non-empty) and spirv");
     if (p->input_count > 8 || (p->input_count && !p->inputs))
         return refuse(g, fmt::format("{}: {} inputs (at most 8, and inputs must not be NULL)",
                                      pass, p->input_count));
-    if (p->blend > ACETATE_BLEND_ADD)
+    if (p->blend > ACETATE_BLEND_OVER)
         return refuse(g, fmt::format("{}: unknown blend {}", pass, p->blend));
     GraphPass out;
     out.name = name;
     out.blend = p->blend;
+    out.kind = p->kind;
+    out.instance_count = instanced ? p->instance_count : 0;
+    out.instance_data_offset = instanced ? p->instance_data_offset : 0;
     if (has_glsl) out.glsl = p->glsl;
     else out.spirv.assign(p->spirv, p->spirv + p->spirv_word_count);
     for (uint32_t i = 0; i < p->input_count; ++i) {
@@ -80,6 +88,13 @@ AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
             if (std::find(masks.begin(), masks.end(), kind) == masks.end())
                 return refuse(g, fmt::format("{} reads \"{}\", a mask kind the descriptor does not "
                                              "list in masks",
+                                             pass, input));
+        } else if (input.rfind("texture.", 0) == 0) {
+            const std::string texture = input.substr(8);
+            const auto& textures = g->graph.textures;
+            if (std::none_of(textures.begin(), textures.end(),
+                             [&](const GraphTexture& t) { return t.name == texture; }))
+                return refuse(g, fmt::format("{} reads \"{}\", which add_texture has not declared",
                                              pass, input));
         } else if (!is_target(g, input)) {
             return refuse(g, fmt::format("{} reads \"{}\", which is neither \"previous\", a mask "
@@ -99,11 +114,13 @@ AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
                                      pass, out.output));
     if (std::count(out.inputs.begin(), out.inputs.end(), out.output))
         return refuse(g, fmt::format("{} reads and writes \"{}\"", pass, out.output));
-    // Targets are shared and not cleared between frames: adding onto one before any pass of
-    // this instance replaced it would read what another floor or frame left there.
-    if (out.blend == ACETATE_BLEND_ADD && !g->written.count(out.output))
-        return refuse(g, fmt::format("{} adds to \"{}\" before any pass replaced it", pass,
-                                     out.output));
+    // Targets are shared and not cleared between frames: blending onto one before any pass of
+    // this instance replaced it would read what another floor or frame left there. An
+    // instanced pass shades only its quads, so it cannot be the first writer either.
+    if ((out.blend != ACETATE_BLEND_REPLACE || instanced) && !g->written.count(out.output))
+        return refuse(g, fmt::format("{} blends onto \"{}\" before any full-size pass replaced "
+                                     "it",
+                                     pass, out.output));
     g->written.insert(out.output);
     g->graph.passes.push_back(std::move(out));
     return ACETATE_OK;
@@ -119,12 +136,31 @@ AcetateStatus set_floor_data(AcetateGraph* g, const float* data, uint32_t count)
     return ACETATE_OK;
 }
 
+AcetateStatus add_texture(AcetateGraph* g, const AcetateTextureDesc* t) {
+    if (!g) return ACETATE_ERROR_INVALID_ARGUMENT;
+    if (!t || !t->name) return refuse(g, fmt::format("{}: add_texture with no name", g->label));
+    const std::string name = t->name;
+    const std::string what = fmt::format("{}: texture \"{}\"", g->label, name);
+    if (!is_simple_name(name)) return refuse(g, what + ": name must match [a-z][a-z0-9_]*");
+    for (const GraphTexture& earlier : g->graph.textures)
+        if (earlier.name == name) return refuse(g, what + ": declared twice");
+    if (t->width == 0 || t->height == 0 || t->width > 16384 || t->height > 16384 || !t->rgba)
+        return refuse(g, fmt::format("{}: {}x{} (1..16384 per side, data not NULL)", what,
+                                     t->width, t->height));
+    GraphTexture texture{name, t->width, t->height, {}};
+    texture.rgba.assign(t->rgba, t->rgba + size_t(t->width) * t->height * 4);
+    if (!std::all_of(texture.rgba.begin(), texture.rgba.end(), [](float v) { return std::isfinite(v); }))
+        return refuse(g, what + ": holds a value that is not finite");
+    g->graph.textures.push_back(std::move(texture));
+    return ACETATE_OK;
+}
+
 void log(AcetateGraph* g, const char* message) {
     if (g && message) g->graph.log.push_back(fmt::format("{}: {}", g->label, message));
 }
 
 const AcetateHostApi kHostApi = {sizeof(AcetateHostApi), &declare_target, &add_pass,
-                                 &set_floor_data, &log};
+                                 &set_floor_data, &log, &add_texture};
 
 }  // namespace
 
@@ -144,6 +180,16 @@ Result<EffectGraph> build_effect_graph(const LoadedPlugin& plugin, const Acetate
     if (!graph.written.count("result"))
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("{}: no pass writes \"result\"", label));
+    // Instanced quads read their rects from floor_data, which build() may set after the pass.
+    for (const GraphPass& pass : graph.graph.passes) {
+        const uint64_t end = uint64_t(pass.instance_data_offset) + 4ull * pass.instance_count;
+        if (pass.kind == ACETATE_PASS_INSTANCED_QUADS && end > graph.graph.floor_data.size())
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("pass \"{}.{}\" draws {} quads whose rects end at "
+                                          "floor_data[{}], but floor_data has {} floats",
+                                          label, pass.name, pass.instance_count, end,
+                                          graph.graph.floor_data.size()));
+    }
     return std::move(graph.graph);
 }
 

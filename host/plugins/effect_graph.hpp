@@ -26,11 +26,21 @@ struct GraphPass {
     std::vector<std::string> inputs;
     std::string output;             // "result" or a target name
     uint32_t blend = ACETATE_BLEND_REPLACE;
+    uint32_t kind = ACETATE_PASS_FULLSCREEN;
+    uint32_t instance_count = 0;    // instanced quads
+    uint32_t instance_data_offset = 0;
+};
+
+struct GraphTexture {
+    std::string name;
+    uint32_t width = 0, height = 0;
+    std::vector<float> rgba;
 };
 
 struct EffectGraph {
     std::vector<GraphTarget> targets;
     std::vector<GraphPass> passes;
+    std::vector<GraphTexture> textures;
     std::vector<float> floor_data;
     std::vector<std::string> log;
 };

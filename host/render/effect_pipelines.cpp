@@ -19,7 +19,7 @@ std::string input_variable(const std::string& input) {
 }
 
 std::string effect_glsl_preamble(const EffectDescriptor& effect,
-                                 const std::vector<std::string>& inputs) {
+                                 const std::vector<std::string>& inputs, uint32_t kind) {
     std::string out =
         "#version 450\n"
         "layout(set = 0, binding = 0, std140) uniform AcetateFrame {\n"
@@ -37,6 +37,9 @@ std::string effect_glsl_preamble(const EffectDescriptor& effect,
         "layout(set = 0, binding = {}, std430) readonly buffer AcetateFloorData {{ float "
         "floor_data[]; }};\n",
         EffectPipelines::kFloorDataBinding);
+    if (kind == ACETATE_PASS_INSTANCED_QUADS)
+        out += "layout(location = 0) in vec2 acetate_uv;\n"
+               "layout(location = 1) flat in int acetate_instance;\n";
     out += "layout(location = 0) out vec4 out_color;\n#line 1\n";
     return out;
 }
@@ -46,13 +49,13 @@ Result<std::unique_ptr<EffectPipelines>> EffectPipelines::create(VulkanContext& 
     std::unique_ptr<EffectPipelines> out(new EffectPipelines(context, pool));
     VkDevice device = context.device();
     std::vector<VkDescriptorSetLayoutBinding> bindings;
-    bindings.push_back({kFrameBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
-                        VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    // The frame block and floor_data are read by the instanced-quad vertex shader too.
+    const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    bindings.push_back({kFrameBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, both, nullptr});
     for (uint32_t i = 0; i < kMaxInputs; ++i)
         bindings.push_back({kFirstInputBinding + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
-    bindings.push_back({kFloorDataBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                        VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    bindings.push_back({kFloorDataBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr});
     VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     set_info.bindingCount = uint32_t(bindings.size());
@@ -90,14 +93,16 @@ EffectPipelines::~EffectPipelines() {
 }
 
 Result<VkPipeline> EffectPipelines::pipeline(const std::vector<uint32_t>& fragment_spirv,
-                                             VkFormat format, uint32_t blend) {
+                                             VkFormat format, uint32_t blend, uint32_t kind) {
+    const bool instanced = kind == ACETATE_PASS_INSTANCED_QUADS;
     const std::string key =
-        fmt::format("effect/{}/{}/{}",
+        fmt::format("effect/{}/{}/{}/{}",
                     sha256_hex(fragment_spirv.data(), fragment_spirv.size() * sizeof(uint32_t)),
-                    int(format), blend);
+                    int(format), blend, kind);
     return pool_.pipeline(key, [&](VkPipelineCache cache) -> Result<VkPipeline> {
-        auto vertex_spirv = pool_.spirv("fullscreen.vert", ShaderStage::Vertex,
-                                        embedded_shader("fullscreen.vert"));
+        const char* vertex_name = instanced ? "instanced_quad.vert" : "fullscreen.vert";
+        auto vertex_spirv = pool_.spirv(vertex_name, ShaderStage::Vertex,
+                                        embedded_shader(vertex_name));
         if (!vertex_spirv) return vertex_spirv.error();
         auto vert = pool_.module(*vertex_spirv.value());
         if (!vert) return vert.error();
@@ -115,7 +120,8 @@ Result<VkPipeline> EffectPipelines::pipeline(const std::vector<uint32_t>& fragme
             VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
         VkPipelineInputAssemblyStateCreateInfo assembly{
             VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+        assembly.topology = instanced ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP
+                                      : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
         VkPipelineViewportStateCreateInfo viewport{
             VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
         viewport.viewportCount = viewport.scissorCount = 1;
@@ -128,10 +134,14 @@ Result<VkPipeline> EffectPipelines::pipeline(const std::vector<uint32_t>& fragme
         multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
         VkPipelineColorBlendAttachmentState attachment{};
         attachment.colorWriteMask = 0xf;
-        if (blend == ACETATE_BLEND_ADD) {
+        if (blend != ACETATE_BLEND_REPLACE) {
+            // ADD: src + dst. OVER (premultiplied): src + dst * (1 - src.a).
+            const VkBlendFactor dst = blend == ACETATE_BLEND_ADD
+                                          ? VK_BLEND_FACTOR_ONE
+                                          : VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
             attachment.blendEnable = VK_TRUE;
-            attachment.srcColorBlendFactor = attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
-            attachment.srcAlphaBlendFactor = attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+            attachment.srcColorBlendFactor = attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+            attachment.dstColorBlendFactor = attachment.dstAlphaBlendFactor = dst;
         }
         VkPipelineColorBlendStateCreateInfo blend_state{
             VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};

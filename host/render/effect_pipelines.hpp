@@ -31,9 +31,10 @@ public:
                                                            PipelinePool& pool);
     ~EffectPipelines();
 
-    // The pipeline for a fullscreen pass with this fragment SPIR-V, output format and blend.
+    // The pipeline for a pass of this kind (ACETATE_PASS_*) with this fragment SPIR-V,
+    // output format and blend (ACETATE_BLEND_*).
     Result<VkPipeline> pipeline(const std::vector<uint32_t>& fragment_spirv, VkFormat format,
-                                uint32_t blend);
+                                uint32_t blend, uint32_t kind);
 
     VkPipelineLayout layout() const { return layout_; }
     VkSampler sampler() const { return sampler_; }
@@ -62,7 +63,7 @@ struct EffectFrameUniforms {
 // The GLSL the host puts before a pass's source: version, the AcetateFrame block with a
 // param_<name> macro per parameter, one sampler2D per input, floor_data, out_color.
 std::string effect_glsl_preamble(const EffectDescriptor& effect,
-                                 const std::vector<std::string>& inputs);
+                                 const std::vector<std::string>& inputs, uint32_t kind);
 
 // The GLSL name of an input: '.' becomes '_' ("mask.water" -> "mask_water").
 std::string input_variable(const std::string& input);

@@ -152,6 +152,17 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
                           fmt::format("{}: {}: {}", file, ref.where, graph.error().message));
 
     for (const std::string& line : graph->log) std::fprintf(stderr, "acetate: log: %s\n", line.c_str());
+    for (const GraphTexture& t : graph->textures) {
+        auto image = GpuImage::create(context, fmt::format("{}.{}", instance->label, t.name),
+                                      t.width, t.height, format,
+                                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                      false);
+        if (!image) return image.error();
+        ImageRGBA pixels(t.width, t.height);
+        pixels.pixels = t.rgba;
+        ACETATE_TRY(upload_image(context, image.value(), pixels));
+        instance->textures.emplace(t.name, std::move(image.value()));
+    }
     for (const GraphTarget& t : graph->targets) {
         auto image = targets.get(context, d.id, t, scene.width, scene.height, format);
         if (!image) return image.error();
@@ -164,9 +175,16 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
         runtime.inputs = pass.inputs;
         runtime.output = pass.output;
         runtime.blend = pass.blend;
+        runtime.instance_count = pass.instance_count;
+        runtime.instance_data_offset = pass.instance_data_offset;
+        for (uint32_t i = 0; i < pass.instance_count; ++i) {
+            const float* r = &graph->floor_data[pass.instance_data_offset + 4 * i];
+            runtime.instanced_pixels +=
+                pixels_covered(r[0], r[1], r[2], r[3], scene.width, scene.height).area();
+        }
         std::shared_ptr<const std::vector<uint32_t>> spirv;
         if (!pass.glsl.empty()) {
-            const std::string source = effect_glsl_preamble(d, pass.inputs) + pass.glsl;
+            const std::string source = effect_glsl_preamble(d, pass.inputs, pass.kind) + pass.glsl;
             auto compiled = renderer.pool().spirv(runtime.label, ShaderStage::Fragment, source);
             if (!compiled)
                 return make_error(compiled.error().code,
@@ -177,7 +195,7 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
         } else {
             spirv = std::make_shared<const std::vector<uint32_t>>(pass.spirv);
         }
-        auto pipeline = pipelines.pipeline(*spirv, format, pass.blend);
+        auto pipeline = pipelines.pipeline(*spirv, format, pass.blend, pass.kind);
         if (!pipeline)
             return make_error(pipeline.error().code,
                               fmt::format("{}: {}: pass \"{}\": {}", file, ref.where, runtime.label,
@@ -218,7 +236,8 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
         const float w = float(io.canvas_width), h = float(io.canvas_height);
         const float ow = float(output->width()), oh = float(output->height());
         const float header[12] = {w, h, 1 / w, 1 / h, ow, oh, 1 / ow, 1 / oh,
-                                  io.time, float(instance.floor), 0, 0};
+                                  io.time, float(instance.floor),
+                                  float(pass.instance_data_offset), 0};
         std::memcpy(u, header, sizeof(header));
         for (size_t i = 0; i < instance.params.size(); ++i) u[12 + i * 4] = instance.params[i];
 
@@ -228,6 +247,8 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
             const GpuImage* image = nullptr;
             if (input == "previous") {
                 image = io.previous;
+            } else if (input.rfind("texture.", 0) == 0) {
+                image = &instance.textures.at(input.substr(8));
             } else if (input.rfind("mask.", 0) == 0) {
                 // A floor without this mask kind reads a transparent texture.
                 image = io.blank_mask ? io.blank_mask : &pipelines.blank_texture();
@@ -291,11 +312,13 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
         writes.push_back(write);
         context.push_descriptor_fn()(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(), 0,
                                      uint32_t(writes.size()), writes.data());
-        vkCmdDraw(cmd, 3, 1, 0, 0);
+        if (pass.instance_count) vkCmdDraw(cmd, 4, io.warm_up ? 1 : pass.instance_count, 0, 0);
+        else vkCmdDraw(cmd, 3, 1, 0, 0);
         vkCmdEndRendering(cmd);
         output->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         ++report.passes;
-        report.pixels_shaded += scissor.area();
+        // An instanced pass shades its quads (clipped to the canvas; overlaps count twice).
+        report.pixels_shaded += pass.instance_count ? pass.instanced_pixels : scissor.area();
     }
 }
 

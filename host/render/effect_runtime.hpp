@@ -26,6 +26,9 @@ struct EffectPassRuntime {
     std::vector<std::string> inputs;
     std::string output;              // "result" or a target name
     uint32_t blend = 0;
+    uint32_t instance_count = 0;     // instanced quads; 0 for a fullscreen pass
+    uint32_t instance_data_offset = 0;
+    uint64_t instanced_pixels = 0;   // sum of the quads' areas on the canvas
     GpuBuffer uniforms;              // EffectFrameUniforms + one vec4 per parameter
 };
 
@@ -37,6 +40,7 @@ struct EffectInstance {
     std::vector<float> params;       // resolved, clamped
     std::vector<EffectPassRuntime> passes;
     std::map<std::string, GpuImage*> targets;  // by declared name; owned by EffectTargets
+    std::map<std::string, GpuImage> textures;  // add_texture(), this instance's own
     GpuBuffer floor_data;            // empty buffer if the plugin set none
     bool has_floor_data = false;
 };

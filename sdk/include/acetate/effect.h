@@ -61,10 +61,12 @@ typedef int32_t AcetateStatus;
 #define ACETATE_PARAM_INT 1u   /* a whole number held in a float */
 #define ACETATE_PARAM_BOOL 2u  /* 0 or 1 held in a float */
 
-#define ACETATE_PASS_FULLSCREEN 0u /* one fragment per pixel of the pass's output */
+#define ACETATE_PASS_FULLSCREEN 0u      /* one fragment per pixel of the pass's output */
+#define ACETATE_PASS_INSTANCED_QUADS 1u /* instance_count quads (particles, sprites), see below */
 
 #define ACETATE_BLEND_REPLACE 0u /* the pass's output replaces the target's pixels */
 #define ACETATE_BLEND_ADD 1u     /* the pass's output is added to the target's pixels */
+#define ACETATE_BLEND_OVER 2u    /* premultiplied over: out = src + dst * (1 - src.a) */
 
 /* One typed parameter. The host clamps every value to [min_value, max_value]. */
 typedef struct AcetateParamDesc {
@@ -150,10 +152,18 @@ typedef struct AcetateTargetDesc {
  *   uniform block AcetateFrame: acetate_canvas (w, h, 1/w, 1/h), acetate_output (same for this
  *     pass's output), acetate_time (seconds), acetate_floor, and param_<name> per parameter;
  *   one sampler2D per input, bound in the order of `inputs`, named after the input with
- *     '.' replaced by '_': "previous", "mask.water" -> mask_water, "bright" -> bright;
+ *     '.' replaced by '_': "previous", "mask.water" -> mask_water, "texture.ramp" ->
+ *     texture_ramp, "bright" -> bright;
  *   floor_data[]: the floats given to set_floor_data (std430 storage buffer);
  *   out vec4 out_color.
  * The plugin's GLSL supplies everything after those declarations, including main().
+ *
+ * An ACETATE_PASS_INSTANCED_QUADS pass draws instance_count quads; quad i covers the scene rect
+ * (x, y, width, height) = floor_data[instance_data_offset + 4 * i + 0..3], in scene pixels. Its
+ * fragment shader also sees `in vec2 acetate_uv` (0..1 across the quad, y down) and
+ * `flat in int acetate_instance` (i); it reads any further per-instance data from floor_data.
+ * Only the quads' pixels are shaded, so it usually follows a pass that copies "previous" into
+ * the same output, and blends with ACETATE_BLEND_ADD or ACETATE_BLEND_OVER.
  */
 typedef struct AcetatePassDesc {
     uint32_t struct_size;
@@ -162,11 +172,25 @@ typedef struct AcetatePassDesc {
     const char* glsl;             /* fragment source after the host's declarations, or NULL */
     const uint32_t* spirv;        /* or a whole SPIR-V fragment module with the same interface */
     uint32_t spirv_word_count;
-    const char* const* inputs;    /* "previous", "mask.<kind>" or a target name */
+    const char* const* inputs;    /* "previous", "mask.<kind>", "texture.<name>" or a target */
     uint32_t input_count;         /* at most 8 */
     const char* output;           /* "result" (the effect's output) or a target name */
-    uint32_t blend;               /* ACETATE_BLEND_* */
+    uint32_t blend;               /* ACETATE_BLEND_*; ADD and OVER need an earlier REPLACE */
+    uint32_t instance_count;      /* instanced quads: how many (1 .. 1048576); else 0 */
+    uint32_t instance_data_offset; /* instanced quads: first float of the rects in floor_data */
 } AcetatePassDesc;
+
+/*
+ * A texture the plugin prepares on the CPU for one instance (a lookup table, a distance field):
+ * premultiplied RGBA floats, row-major, y down, uploaded at load in the target format. Passes
+ * read it as the input "texture.<name>".
+ */
+typedef struct AcetateTextureDesc {
+    const char* name;    /* [a-z][a-z0-9_]*, unique within the instance */
+    uint32_t width;      /* 1 .. 16384 */
+    uint32_t height;     /* 1 .. 16384 */
+    const float* rgba;   /* width * height * 4 floats, all finite; copied */
+} AcetateTextureDesc;
 
 /* Host-owned handle through which build() declares an instance's work. Opaque. */
 typedef struct AcetateGraph AcetateGraph;
@@ -184,8 +208,11 @@ typedef struct AcetateHostApi {
     AcetateStatus (*add_pass)(AcetateGraph* graph, const AcetatePassDesc* pass);
     /* Sets this instance's floor_data (replacing earlier data). At most 1 Mi floats. */
     AcetateStatus (*set_floor_data)(AcetateGraph* graph, const float* data, uint32_t count);
-    /* Writes a line to the host's log, prefixed with the plugin id. */
+    /* Writes a line to the host's standard error, prefixed with the instance label. */
     void (*log)(AcetateGraph* graph, const char* message);
+    /* Adds a texture (see AcetateTextureDesc). Errors: bad or duplicate name, size, NULL data,
+     * a value that is not finite. */
+    AcetateStatus (*add_texture)(AcetateGraph* graph, const AcetateTextureDesc* texture);
 } AcetateHostApi;
 
 /*

@@ -58,9 +58,11 @@ struct EffectInfo {
 struct Pass {
     std::string name;
     std::string glsl;                  // after the host's declarations; defines main()
-    std::vector<std::string> inputs;   // "previous", "mask.<kind>" or a target name
+    std::vector<std::string> inputs;   // "previous", "mask.<kind>", "texture.<name>", a target
     std::string output = "result";
     uint32_t blend = ACETATE_BLEND_REPLACE;
+    uint32_t instance_count = 0;       // > 0: an instanced-quad pass (see acetate/effect.h)
+    uint32_t instance_data_offset = 0;
 };
 
 // The floor an instance is built for, with parameters looked up by name.
@@ -106,7 +108,9 @@ public:
         AcetatePassDesc desc{};
         desc.struct_size = sizeof(desc);
         desc.name = pass.name.c_str();
-        desc.kind = ACETATE_PASS_FULLSCREEN;
+        desc.kind = pass.instance_count ? ACETATE_PASS_INSTANCED_QUADS : ACETATE_PASS_FULLSCREEN;
+        desc.instance_count = pass.instance_count;
+        desc.instance_data_offset = pass.instance_data_offset;
         desc.glsl = pass.glsl.c_str();
         desc.inputs = inputs.data();
         desc.input_count = uint32_t(inputs.size());
@@ -119,6 +123,14 @@ public:
               "");
     }
     void log(const std::string& message) { host_.log(graph_, message.c_str()); }
+    // A texture for "texture.<name>" inputs: width * height premultiplied RGBA floats.
+    void texture(const std::string& name, uint32_t width, uint32_t height,
+                 std::span<const float> rgba) {
+        if (rgba.size() != size_t(width) * height * 4)
+            throw std::invalid_argument("texture \"" + name + "\": expected width*height*4 floats");
+        const AcetateTextureDesc desc{name.c_str(), width, height, rgba.data()};
+        check(host_.add_texture(graph_, &desc), "add_texture", name);
+    }
 
 private:
     void check(AcetateStatus status, const char* call, const std::string& what) {

@@ -1,0 +1,22 @@
+#version 450
+// Effect passes of kind ACETATE_PASS_INSTANCED_QUADS: quad i covers the scene rect
+// floor_data[offset + 4i .. +3] = (x, y, width, height), offset in acetate_misc.z.
+layout(set = 0, binding = 0, std140) uniform AcetateFrame {
+    vec4 acetate_canvas;
+    vec4 acetate_output;
+    vec4 acetate_misc;
+};
+layout(set = 0, binding = 9, std430) readonly buffer AcetateFloorData { float floor_data[]; };
+layout(location = 0) out vec2 acetate_uv;
+layout(location = 1) flat out int acetate_instance;
+
+void main() {
+    int base = int(acetate_misc.z) + 4 * gl_InstanceIndex;
+    vec4 rect = vec4(floor_data[base], floor_data[base + 1], floor_data[base + 2],
+                     floor_data[base + 3]);
+    vec2 corner = vec2(gl_VertexIndex & 1, (gl_VertexIndex >> 1) & 1);  // 4-vertex strip
+    acetate_uv = corner;
+    acetate_instance = gl_InstanceIndex;
+    // Scene pixels to NDC; the viewport covers the pass's output, whatever its divisor.
+    gl_Position = vec4((rect.xy + corner * rect.zw) * acetate_canvas.zw * 2.0 - 1.0, 0.0, 1.0);
+}
