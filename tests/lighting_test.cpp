@@ -4,6 +4,7 @@
 #include <Imath/half.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "render_fixture.hpp"
 
@@ -149,6 +150,42 @@ TEST_F(LightingTest, PresetsSetParametersAndUnknownOnesAreRefused) {
     ASSERT_FALSE(refused.ok());
     EXPECT_NE(refused.error().message.find("params.brightness"), std::string::npos)
         << refused.error().message;
+}
+
+}  // namespace
+}  // namespace acetate::test
+
+namespace acetate::test {
+namespace {
+
+TEST_F(LightingTest, AnimatesWithTimeAndIsDeterministic) {
+    SceneDesc scene = make_scene(32, 32, {0, 0, 0, 1});
+    const uint32_t floor = add_floor(scene, "ground");
+    add_tile(scene, floor, solid(32, 32, {0.5f, 0.5f, 0.5f, 1}), {0, 0, 32, 32});
+    scene.floors[floor].lights = {{{16, 16}, 20, {1, 1, 1}, 2.0f}};
+    EffectRef ref;
+    ref.plugin = "acetate.lighting";
+    ref.params = {{"flicker", 1.0}};
+    ref.where = "floors[0].effects[0]";
+    scene.floors[floor].effects = {ref};
+    EffectRef bloom;
+    bloom.plugin = "acetate.bloom";
+    bloom.where = "global_effects[0]";
+    scene.global_effects = {bloom};
+    auto compositor = load(scene);
+    ASSERT_TRUE(compositor);
+    auto frame = [&](float time) {
+        auto stats = compositor->render(floor, time);
+        EXPECT_TRUE(stats.ok());
+        auto out = compositor->read_output();
+        EXPECT_TRUE(out.ok());
+        return out.ok() ? out.value() : ImageRGBA();
+    };
+    const ImageRGBA a = frame(0.0f), b = frame(0.3f), c = frame(0.0f);
+    EXPECT_GT(max_abs_difference(a, b), 0.01) << "the flicker follows time";
+    ASSERT_EQ(a.pixels.size(), c.pixels.size());
+    EXPECT_EQ(std::memcmp(a.pixels.data(), c.pixels.data(), a.pixels.size() * sizeof(float)), 0)
+        << "same inputs and time, bit-identical output";
 }
 
 }  // namespace
