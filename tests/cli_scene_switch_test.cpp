@@ -117,5 +117,24 @@ TEST_F(CliSceneSwitch, ATruncatedPipelineCacheIsIgnoredAndReplaced) {
     EXPECT_EQ(run.err.find("validation"), std::string::npos) << run.err;
 }
 
+TEST_F(CliSceneSwitch, ASceneWithABrokenPluginIsReportedAndTheOthersStillRender) {
+    write_text(dir_ / "broken.json",
+               R"({"format": "acetate-scene/1", "canvas": {"width": 16, "height": 16},
+  "floors": [{"name": "ground", "tiles": [{"image": "tile.exr", "rect": [0, 0, 16, 16]}],
+              "effects": [{"plugin": "test.bad_shader"}]}]})");
+    const CliRun run = run_cli("'" + (dir_ / "a.json").string() + "' '" +
+                                   (dir_ / "broken.json").string() + "' '" +
+                                   (dir_ / "a.json").string() + "' -o '" +
+                                   (dir_ / "out.png").string() + "' --plugin-path '" +
+                                   ACETATE_TEST_PLUGIN_DIR + "'",
+                               dir_, dir_ / "cache");
+    EXPECT_EQ(run.status, 1) << run.err;
+    EXPECT_NE(run.err.find("broken.json: floors[0].effects[0]"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("bad_shader.so"), std::string::npos) << run.err;
+    EXPECT_TRUE(std::filesystem::exists(dir_ / "out.scene0.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "out.scene1.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir_ / "out.scene2.png"));
+}
+
 }  // namespace
 }  // namespace acetate::test

@@ -85,10 +85,19 @@ int run_render(const RenderCommand& command) {
 
     nlohmann::json scene_reports = nlohmann::json::array();
     const bool several_scenes = scenes.size() > 1;
+    int failed_scenes = 0;
     for (size_t s = 0; s < scenes.size(); ++s) {
         const SceneDesc& scene = scenes[s];
         auto compositor = Compositor::load(*renderer.value(), scene, options);
-        if (!compositor) return fail(compositor.error());
+        if (!compositor) {
+            // A scene that cannot load (a broken plugin, say) is reported; the host goes on
+            // with the other scenes and exits non-zero at the end.
+            fail(compositor.error());
+            ++failed_scenes;
+            scene_reports.push_back({{"scene", scene.file.string()},
+                                     {"error", compositor.error().message}});
+            continue;
+        }
         const LoadStats& load = (*compositor)->load_stats();
         std::printf("loaded %s in %.1f ms: %llu images, %llu targets, %llu shaders compiled, "
                     "%llu pipelines created\n",
@@ -138,7 +147,6 @@ int run_render(const RenderCommand& command) {
                      saved.error().message.c_str());
 
     if (command.stats) {
-        nlohmann::json plugins = nlohmann::json::array();
         // The first scene's figures stay at the top level, as for a single scene.
         nlohmann::json stats = scene_reports.front();
         stats["device"] = (*context)->device_name();
@@ -156,7 +164,7 @@ int run_render(const RenderCommand& command) {
     if (!(*context)->validation_messages().empty())
         return fail(fmt::format("{} Vulkan validation messages (see above)",
                                 (*context)->validation_messages().size()));
-    return 0;
+    return failed_scenes ? 1 : 0;
 }
 
 }  // namespace acetate
