@@ -7,6 +7,7 @@
 
 #include "core/sha256.hpp"
 #include "render/pipeline_pool.hpp"
+#include "vulkan/graphics_pipeline.hpp"
 #include "vulkan/vulkan_context.hpp"
 
 namespace acetate {
@@ -111,71 +112,19 @@ Result<VkPipeline> EffectPipelines::pipeline(const std::vector<uint32_t>& fragme
             vkDestroyShaderModule(context_.device(), vert.value(), nullptr);
             return frag.error();
         }
-        VkPipelineShaderStageCreateInfo stages[2] = {};
-        stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                     VK_SHADER_STAGE_VERTEX_BIT, vert.value(), "main", nullptr};
-        stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                     VK_SHADER_STAGE_FRAGMENT_BIT, frag.value(), "main", nullptr};
-        VkPipelineVertexInputStateCreateInfo vertex_input{
-            VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        VkPipelineInputAssemblyStateCreateInfo assembly{
-            VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        assembly.topology = instanced ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP
-                                      : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-        VkPipelineViewportStateCreateInfo viewport{
-            VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-        viewport.viewportCount = viewport.scissorCount = 1;
-        VkPipelineRasterizationStateCreateInfo raster{
-            VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-        raster.cullMode = VK_CULL_MODE_NONE;
-        raster.lineWidth = 1.0f;
-        VkPipelineMultisampleStateCreateInfo multisample{
-            VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-        VkPipelineColorBlendAttachmentState attachment{};
-        attachment.colorWriteMask = 0xf;
-        if (blend != ACETATE_BLEND_REPLACE) {
-            // ADD: src + dst. OVER (premultiplied): src + dst * (1 - src.a).
-            const VkBlendFactor dst = blend == ACETATE_BLEND_ADD
-                                          ? VK_BLEND_FACTOR_ONE
-                                          : VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-            attachment.blendEnable = VK_TRUE;
-            attachment.srcColorBlendFactor = attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-            attachment.dstColorBlendFactor = attachment.dstAlphaBlendFactor = dst;
-        }
-        VkPipelineColorBlendStateCreateInfo blend_state{
-            VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-        blend_state.attachmentCount = 1;
-        blend_state.pAttachments = &attachment;
-        const VkDynamicState dynamic[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-        VkPipelineDynamicStateCreateInfo dynamic_state{
-            VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-        dynamic_state.dynamicStateCount = 2;
-        dynamic_state.pDynamicStates = dynamic;
-        VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-        rendering.colorAttachmentCount = 1;
-        rendering.pColorAttachmentFormats = &format;
-        VkPipelineDepthStencilStateCreateInfo depth_stencil{
-            VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-        VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-        info.pNext = &rendering;
-        info.stageCount = 2;
-        info.pStages = stages;
-        info.pVertexInputState = &vertex_input;
-        info.pInputAssemblyState = &assembly;
-        info.pViewportState = &viewport;
-        info.pRasterizationState = &raster;
-        info.pMultisampleState = &multisample;
-        info.pDepthStencilState = &depth_stencil;
-        info.pColorBlendState = &blend_state;
-        info.pDynamicState = &dynamic_state;
-        info.layout = layout_;
-        VkPipeline pipeline = VK_NULL_HANDLE;
-        const VkResult r =
-            vkCreateGraphicsPipelines(context_.device(), cache, 1, &info, nullptr, &pipeline);
+        GraphicsPipelineDesc desc;
+        desc.vertex = vert.value();
+        desc.fragment = frag.value();
+        desc.topology = instanced ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP
+                                  : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+        desc.color_format = format;
+        desc.blend = blend == ACETATE_BLEND_ADD    ? BlendMode::Add
+                     : blend == ACETATE_BLEND_OVER ? BlendMode::Over
+                                                   : BlendMode::Replace;
+        desc.layout = layout_;
+        auto pipeline = create_graphics_pipeline(context_.device(), cache, desc, "effect pass");
         vkDestroyShaderModule(context_.device(), vert.value(), nullptr);
         vkDestroyShaderModule(context_.device(), frag.value(), nullptr);
-        if (r != VK_SUCCESS) return vk_error("vkCreateGraphicsPipelines (effect pass)", r);
         return pipeline;
     });
 }

@@ -4,6 +4,7 @@
 
 #include "core/check.hpp"
 #include "render/pipeline_pool.hpp"
+#include "vulkan/graphics_pipeline.hpp"
 #include "vulkan/shader_compiler.hpp"
 #include "vulkan/vulkan_context.hpp"
 
@@ -145,98 +146,22 @@ Result<VkPipeline> HostPipelines::create_stage(Stage stage, VkFormat color_forma
         return frag.error();
     }
 
-    VkPipelineShaderStageCreateInfo stages[2] = {};
-    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                 VK_SHADER_STAGE_VERTEX_BIT, vert.value(), "main", nullptr};
-    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                 VK_SHADER_STAGE_FRAGMENT_BIT, frag.value(), "main", nullptr};
-
-    VkPipelineVertexInputStateCreateInfo vertex_input{
-        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    VkPipelineInputAssemblyStateCreateInfo assembly{
-        VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    GraphicsPipelineDesc desc;
+    desc.vertex = vert.value();
+    desc.fragment = frag.value();
     const bool is_tile = stage == Stage::TileToTarget || stage == Stage::TileToAccum;
-    assembly.topology =
-        is_tile ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    viewport.viewportCount = 1;
-    viewport.scissorCount = 1;
-    VkPipelineRasterizationStateCreateInfo raster{
-        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE;
-    raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo multisample{
-        VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-
-    VkPipelineDepthStencilStateCreateInfo depth_stencil{
-        VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    depth_stencil.stencilTestEnable = s.stencil_attachment ? VK_TRUE : VK_FALSE;
-    VkStencilOpState op{};
-    op.failOp = VK_STENCIL_OP_KEEP;
-    op.passOp = s.stencil_write ? VK_STENCIL_OP_REPLACE : VK_STENCIL_OP_KEEP;
-    op.depthFailOp = VK_STENCIL_OP_KEEP;
-    op.compareOp = s.stencil_compare;
-    op.compareMask = 0xff;
-    op.writeMask = s.stencil_write ? 0xff : 0x00;
-    op.reference = 1;  // "this floor covers here"
-    depth_stencil.front = depth_stencil.back = op;
-
-    VkPipelineColorBlendAttachmentState blend{};
-    blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                           VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    if (s.over_blend) {
-        // Premultiplied "over": out = src + dst * (1 - src.a), for colour and alpha alike.
-        blend.blendEnable = VK_TRUE;
-        blend.srcColorBlendFactor = blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-        blend.dstColorBlendFactor = blend.dstAlphaBlendFactor =
-            VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-        blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
-    }
-    VkPipelineColorBlendStateCreateInfo blend_state{
-        VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blend_state.attachmentCount = 1;
-    blend_state.pAttachments = &blend;
-
-    const VkDynamicState dynamic[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-    VkPipelineDynamicStateCreateInfo dynamic_state{
-        VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dynamic_state.dynamicStateCount = 2;
-    dynamic_state.pDynamicStates = dynamic;
-
-    const VkFormat stencil = context_.stencil_format();
-    const bool has_depth = stencil != VK_FORMAT_S8_UINT;
-    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachmentFormats = &color_format;
-    if (s.stencil_attachment) {
-        rendering.stencilAttachmentFormat = stencil;
-        rendering.depthAttachmentFormat = has_depth ? stencil : VK_FORMAT_UNDEFINED;
-    }
-
-    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    info.pNext = &rendering;
-    info.stageCount = 2;
-    info.pStages = stages;
-    info.pVertexInputState = &vertex_input;
-    info.pInputAssemblyState = &assembly;
-    info.pViewportState = &viewport;
-    info.pRasterizationState = &raster;
-    info.pMultisampleState = &multisample;
-    info.pDepthStencilState = &depth_stencil;
-    info.pColorBlendState = &blend_state;
-    info.pDynamicState = &dynamic_state;
-    info.layout = layout_;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    VkResult r = vkCreateGraphicsPipelines(context_.device(), cache, 1, &info, nullptr, &pipeline);
+    desc.topology = is_tile ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    desc.color_format = color_format;
+    if (s.stencil_attachment) desc.stencil_format = context_.stencil_format();
+    desc.stencil_test = s.stencil_attachment;
+    desc.stencil_compare = s.stencil_compare;
+    desc.stencil_write = s.stencil_write;
+    // Premultiplied "over" for every stage that composites (seed 000, A1/A5).
+    desc.blend = s.over_blend ? BlendMode::Over : BlendMode::Replace;
+    desc.layout = layout_;
+    auto pipeline = create_graphics_pipeline(context_.device(), cache, desc, stage_name(stage));
     vkDestroyShaderModule(context_.device(), vert.value(), nullptr);
     vkDestroyShaderModule(context_.device(), frag.value(), nullptr);
-    if (r != VK_SUCCESS)
-        return make_error(ErrorCode::VulkanCall,
-                          fmt::format("creating the \"{}\" pipeline failed (VkResult {})",
-                                      stage_name(stage), int(r)),
-                          r);
     return pipeline;
 }
 
