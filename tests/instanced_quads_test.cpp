@@ -64,3 +64,52 @@ TEST_F(InstancedQuads, RectsBeyondFloorDataAreRefused) {
 
 }  // namespace
 }  // namespace acetate::test
+
+#include <cstdlib>
+#include <fstream>
+
+#include "plugins/plugin_loader.hpp"
+#include "render/effect_pipelines.hpp"
+#include "vulkan/shader_compiler.hpp"
+
+namespace acetate::test {
+namespace {
+
+TEST_F(RenderTest, APassGivenAsSpirvRunsLikeItsGlsl) {
+    // Compile the plugin's pass the way a plugin author would ship it: the host's declarations
+    // for this effect, then the body, to SPIR-V.
+    auto plugin = renderer().plugins().load("test.spirv_pass");
+    ASSERT_TRUE(plugin.ok()) << plugin.error().message;
+    const std::string body =
+        "void main() { vec4 c = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);\n"
+        "              out_color = vec4(c.rgb * param_gain, c.a); }\n";
+    auto spirv = compile_glsl("gain", ShaderStage::Fragment,
+                              effect_glsl_preamble(plugin.value()->descriptor, {"previous"},
+                                                   ACETATE_PASS_FULLSCREEN) +
+                                  body);
+    ASSERT_TRUE(spirv.ok()) << spirv.error().message;
+    const auto file = dir() / "gain.spv";
+    std::ofstream(file, std::ios::binary)
+        .write(reinterpret_cast<const char*>(spirv->data()), std::streamsize(spirv->size() * 4));
+    setenv("ACETATE_TEST_SPIRV_FILE", file.c_str(), 1);
+
+    SceneDesc scene = make_scene(8, 8, {0, 0, 0, 0});
+    const uint32_t floor = add_floor(scene, "ground");
+    add_tile(scene, floor, solid(8, 8, {0.5f, 0.25f, 1.0f, 1}), {0, 0, 8, 8});
+    EffectRef ref;
+    ref.plugin = "test.spirv_pass";
+    ref.params = {{"gain", 0.5}};
+    ref.where = "floors[0].effects[0]";
+    scene.floors[floor].effects = {ref};
+    auto compositor = load(scene);
+    unsetenv("ACETATE_TEST_SPIRV_FILE");
+    ASSERT_TRUE(compositor);
+    const ImageRGBA out = render(*compositor, floor);
+    EXPECT_EQ(out.at(3, 3)[0], 0.25f);
+    EXPECT_EQ(out.at(3, 3)[1], 0.125f);
+    EXPECT_EQ(out.at(3, 3)[2], 0.5f);
+    EXPECT_EQ(out.at(3, 3)[3], 1.0f);
+}
+
+}  // namespace
+}  // namespace acetate::test

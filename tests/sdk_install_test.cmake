@@ -189,6 +189,34 @@ if(NOT DEFINED RENDER OR RENDER)
   if(NOT step_output MATCHES " 0 violations")
     message(FATAL_ERROR "sdk_install_test: the render reported premultiplied violations:\n${step_output}")
   endif()
+
+  # The plugin must change the render: the same scene with every effect removed (image paths
+  # made absolute, since the copy lives elsewhere) gives a different image.
+  set(scene_dir "${SOURCE_DIR}/examples/out-of-tree-plugin")
+  file(READ "${scene_dir}/scene.json" plain)
+  string(JSON floors LENGTH "${plain}" floors)
+  math(EXPR last_floor "${floors} - 1")
+  foreach(f RANGE ${last_floor})
+    string(JSON plain SET "${plain}" floors ${f} effects "[]")
+    string(JSON tiles LENGTH "${plain}" floors ${f} tiles)
+    math(EXPR last_tile "${tiles} - 1")
+    foreach(t RANGE ${last_tile})
+      string(JSON image GET "${plain}" floors ${f} tiles ${t} image)
+      get_filename_component(image "${scene_dir}/${image}" ABSOLUTE)
+      string(JSON plain SET "${plain}" floors ${f} tiles ${t} image "\"${image}\"")
+    endforeach()
+  endforeach()
+  file(WRITE "${WORK_DIR}/plain.json" "${plain}")
+  run_step("acetate render (the same scene without the plugin)"
+    "${CMAKE_COMMAND}" -E env "MESA_SHADER_CACHE_DIR=${WORK_DIR}/cache/mesa"
+    "XDG_CACHE_HOME=${WORK_DIR}/cache/xdg"
+    "${prefix}/bin/acetate" render "${WORK_DIR}/plain.json" -o "${WORK_DIR}/plain.png")
+  file(SHA256 "${image}" with_plugin)
+  file(SHA256 "${WORK_DIR}/plain.png" without_plugin)
+  if(with_plugin STREQUAL without_plugin)
+    message(FATAL_ERROR "sdk_install_test: the tint plugin did not change the render")
+  endif()
+  message(STATUS "ok: the plugin changes the render")
 endif()
 
 # ---- 5. A changed shader is re-embedded and changes the digest ----

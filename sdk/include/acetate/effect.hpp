@@ -63,6 +63,7 @@ struct Pass {
     uint32_t blend = ACETATE_BLEND_REPLACE;
     uint32_t instance_count = 0;       // > 0: an instanced-quad pass (see acetate/effect.h)
     uint32_t instance_data_offset = 0;
+    std::vector<uint32_t> spirv;       // instead of glsl: a whole fragment module
 };
 
 // The floor an instance is built for, with parameters looked up by name.
@@ -111,7 +112,9 @@ public:
         desc.kind = pass.instance_count ? ACETATE_PASS_INSTANCED_QUADS : ACETATE_PASS_FULLSCREEN;
         desc.instance_count = pass.instance_count;
         desc.instance_data_offset = pass.instance_data_offset;
-        desc.glsl = pass.glsl.c_str();
+        desc.glsl = pass.spirv.empty() ? pass.glsl.c_str() : nullptr;
+        desc.spirv = pass.spirv.empty() ? nullptr : pass.spirv.data();
+        desc.spirv_word_count = uint32_t(pass.spirv.size());
         desc.inputs = inputs.data();
         desc.input_count = uint32_t(inputs.size());
         desc.output = pass.output.c_str();
