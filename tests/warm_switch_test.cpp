@@ -44,6 +44,38 @@ TEST_F(WarmSwitch, Floors010DoNoWorkAfterLoadAndFrame3EqualsFrame1) {
     }
 }
 
+TEST_F(WarmSwitch, WithFloorAndGlobalEffectsTooNothingIsDoneAfterLoad) {
+    SceneDesc scene = make_scene(48, 32, {0, 0, 0, 1});
+    for (uint32_t f = 0; f < 2; ++f) {
+        const uint32_t floor = add_floor(scene, "floor" + std::to_string(f));
+        add_tile(scene, floor, solid(24, 32, {0.4f, 0.3f, 0.2f, 1}), {24.0 * f, 0, 24, 32});
+        scene.floors[floor].lights = {{{12.0f + 24 * f, 16}, 20, {1, 1, 1}, 2}};
+        EffectRef lighting;
+        lighting.plugin = "acetate.lighting";
+        lighting.where = "floors[" + std::to_string(f) + "].effects[0]";
+        scene.floors[floor].effects = {lighting};
+    }
+    EffectRef bloom;
+    bloom.plugin = "acetate.bloom";
+    bloom.where = "global_effects[0]";
+    scene.global_effects = {bloom};
+    auto compositor = load(scene);
+    ASSERT_TRUE(compositor);
+    std::vector<ImageRGBA> frames;
+    for (uint32_t floor : {0u, 1u, 0u}) {
+        FrameStats stats;
+        frames.push_back(render(*compositor, floor, &stats));
+        EXPECT_EQ(stats.images_loaded + stats.targets_allocated + stats.shaders_compiled +
+                      stats.pipelines_created,
+                  0u)
+            << "floor " << floor;
+    }
+    ASSERT_EQ(frames[0].pixels.size(), frames[2].pixels.size());
+    EXPECT_EQ(std::memcmp(frames[0].pixels.data(), frames[2].pixels.data(),
+                          frames[0].pixels.size() * sizeof(float)),
+              0);
+}
+
 TEST_F(WarmSwitch, LoadReportsWhatItPrepared) {
     SceneDesc scene = make_scene(16, 16);
     const uint32_t floor = add_floor(scene, "only");
