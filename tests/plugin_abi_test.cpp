@@ -63,6 +63,15 @@ INSTANTIATE_TEST_SUITE_P(
         return name;
     });
 
+TEST_F(RenderTest, APluginIdThatIsAPathIsRefusedBeforeAnyFileIsOpened) {
+    for (const char* id : {"../tests/test-plugins/sparks", "/tmp/evil", "test.sparks/../x"}) {
+        auto refused = renderer().plugins().load(id);
+        ASSERT_FALSE(refused.ok()) << id;
+        EXPECT_NE(refused.error().message.find("not a reverse-DNS name"), std::string::npos)
+            << refused.error().message;
+    }
+}
+
 TEST_F(RenderTest, AFloorEffectListedAsGlobalIsRefused) {
     SceneDesc scene = make_scene(8, 8);
     const uint32_t floor = add_floor(scene, "ground");

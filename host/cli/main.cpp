@@ -64,5 +64,11 @@ int main(int argc, char** argv) {
                      floors_list.c_str());
         return 2;
     }
-    return acetate::run_render(render);
+    try {
+        return acetate::run_render(render);
+    } catch (const std::exception& e) {
+        // Out of memory and the like: still one line and a non-zero exit, never an abort.
+        std::fprintf(stderr, "acetate: %s\n", e.what());
+        return 1;
+    }
 }

@@ -23,15 +23,15 @@ std::string EffectDescriptor::version_string() const {
     return fmt::format("{}.{}.{}", version[0], version[1], version[2]);
 }
 
+bool is_reverse_dns(const std::string& id) {
+    static const std::regex pattern("[a-z][a-z0-9_-]*(\\.[a-z][a-z0-9_-]*)+");
+    return std::regex_match(id, pattern);
+}
+
 namespace {
 
 Error bad(const std::string& where, const std::string& what) {
     return make_error(ErrorCode::InvalidInput, fmt::format("{}: descriptor: {}", where, what));
-}
-
-bool is_reverse_dns(const std::string& id) {
-    static const std::regex pattern("[a-z][a-z0-9_-]*(\\.[a-z][a-z0-9_-]*)+");
-    return std::regex_match(id, pattern);
 }
 
 }  // namespace
@@ -70,6 +70,8 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d, const
     }
 
     if (d->param_count && !d->params) return bad(where, "param_count > 0 but params is NULL");
+    if (d->param_count > 256)
+        return bad(where, fmt::format("{} parameters; at most 256", d->param_count));
     std::set<std::string> names;
     for (uint32_t i = 0; i < d->param_count; ++i) {
         const AcetateParamDesc& p = d->params[i];

@@ -40,5 +40,7 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* descript
 
 // [a-z][a-z0-9_]* -- the names of parameters, targets, passes and mask kinds.
 bool is_simple_name(const std::string& name);
+// Reverse-DNS: at least two dot-separated [a-z][a-z0-9_-]* labels.
+bool is_reverse_dns(const std::string& id);
 
 }  // namespace acetate

@@ -77,8 +77,15 @@ AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
     out.kind = p->kind;
     out.instance_count = instanced ? p->instance_count : 0;
     out.instance_data_offset = instanced ? p->instance_data_offset : 0;
-    if (has_glsl) out.glsl = p->glsl;
-    else out.spirv.assign(p->spirv, p->spirv + p->spirv_word_count);
+    if (has_glsl) {
+        out.glsl = p->glsl;
+    } else {
+        // The driver must never see a malformed module: check the header here (magic number,
+        // and the five header words), and glslang-produced modules only are the tested path.
+        if (p->spirv_word_count < 5 || p->spirv[0] != 0x07230203u)
+            return refuse(g, pass + ": spirv is not a SPIR-V module (bad magic number or too short)");
+        out.spirv.assign(p->spirv, p->spirv + p->spirv_word_count);
+    }
     for (uint32_t i = 0; i < p->input_count; ++i) {
         const std::string input = p->inputs[i] ? p->inputs[i] : "";
         if (input == "previous") {
@@ -132,6 +139,8 @@ AcetateStatus set_floor_data(AcetateGraph* g, const float* data, uint32_t count)
         return refuse(g, fmt::format("{}: set_floor_data with {} floats (at most 1048576, data "
                                      "not NULL)",
                                      g->label, count));
+    if (!std::all_of(data, data + count, [](float v) { return std::isfinite(v); }))
+        return refuse(g, fmt::format("{}: set_floor_data: a value is not finite", g->label));
     g->graph.floor_data.assign(data, data + count);
     return ACETATE_OK;
 }
@@ -159,8 +168,39 @@ void log(AcetateGraph* g, const char* message) {
     if (g && message) g->graph.log.push_back(fmt::format("{}: {}", g->label, message));
 }
 
-const AcetateHostApi kHostApi = {sizeof(AcetateHostApi), &declare_target, &add_pass,
-                                 &set_floor_data, &log, &add_texture};
+// No exception may unwind into the plugin's frames (it may be C, or built without unwind
+// tables): every callback runs inside a catch-all.
+template <class Body>
+AcetateStatus guarded(Body&& body) noexcept {
+    try {
+        return body();
+    } catch (const std::bad_alloc&) {
+        return ACETATE_ERROR_OUT_OF_MEMORY;
+    } catch (...) {
+        return ACETATE_ERROR_FAILED;
+    }
+}
+
+const AcetateHostApi kHostApi = {
+    sizeof(AcetateHostApi),
+    [](AcetateGraph* g, const AcetateTargetDesc* t) noexcept {
+        return guarded([&] { return declare_target(g, t); });
+    },
+    [](AcetateGraph* g, const AcetatePassDesc* p) noexcept {
+        return guarded([&] { return add_pass(g, p); });
+    },
+    [](AcetateGraph* g, const float* data, uint32_t count) noexcept {
+        return guarded([&] { return set_floor_data(g, data, count); });
+    },
+    [](AcetateGraph* g, const char* message) noexcept {
+        guarded([&] {
+            log(g, message);
+            return ACETATE_OK;
+        });
+    },
+    [](AcetateGraph* g, const AcetateTextureDesc* t) noexcept {
+        return guarded([&] { return add_texture(g, t); });
+    }};
 
 }  // namespace
 

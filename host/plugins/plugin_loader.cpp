@@ -77,6 +77,13 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::load_file(const std::filesys
 
 Result<std::shared_ptr<LoadedPlugin>> PluginLoader::load(const std::string& id) {
     if (auto found = by_id_.find(id); found != by_id_.end()) return found->second;
+    // The id becomes a file name: only reverse-DNS ids, so no path can lead outside the
+    // plugin directories.
+    if (!is_reverse_dns(id))
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("plugin id \"{}\" is not a reverse-DNS name like "
+                                      "\"com.example.glow\"",
+                                      id));
     std::vector<std::string> names{id + ".so"};
     const std::string last = id.substr(id.rfind('.') + 1);
     if (last != id) names.push_back(last + ".so");

@@ -316,16 +316,22 @@ Result<void> Compositor::warm_pipelines() {
                 draw_one_pixel(cmd, Stage::TileToTarget, *floor_color_, true, texture->view());
             if (options_.inject) draw_one_pixel(cmd, inject_stage(), *floor_color_, true, output_.view());
             draw_one_pixel(cmd, Stage::Composite, accumulation_, true, output_.view());
+            if (std::any_of(floor_effects_.begin(), floor_effects_.end(), [](const auto& f) {
+                    return std::any_of(f.begin(), f.end(), [](const auto& e) { return e->expanding; });
+                }))
+                draw_one_pixel(cmd, Stage::CompositeByAlpha, accumulation_, true, output_.view());
         }
         accumulation_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         draw_one_pixel(cmd, Stage::Output, output_, false, accumulation_.view());
         // Every effect pass too, reading the (cleared) output and writing one pixel.
-        auto warm_effect = [&](EffectInstance& effect, GpuImage& result, const std::map<std::string, GpuImage>* masks) {
+        auto warm_effect = [&](EffectInstance& effect, GpuImage& result,
+                               const std::map<std::string, GpuImage>* masks,
+                               const GpuImage* blank_mask) {
             EffectIo io;
             io.previous = &output_;
             io.result = &result;
             io.masks = masks;
-            io.blank_mask = resources_->blank_mask();
+            io.blank_mask = blank_mask;  // what the real frame binds, texture state and all
             io.result_scissor = PixelRect{0, 0, 1, 1};
             io.canvas_width = width_;
             io.canvas_height = height_;
@@ -335,8 +341,10 @@ Result<void> Compositor::warm_pipelines() {
         };
         for (size_t f = 0; f < floor_effects_.size(); ++f)
             for (auto& effect : floor_effects_[f])
-                warm_effect(*effect, *floor_pingpong_, &resources_->floors()[f].masks);
-        for (auto& effect : global_effects_) warm_effect(*effect, *accumulation_pingpong_, nullptr);
+                warm_effect(*effect, *floor_pingpong_, &resources_->floors()[f].masks,
+                            resources_->blank_mask());
+        for (auto& effect : global_effects_)
+            warm_effect(*effect, *accumulation_pingpong_, nullptr, nullptr);
     });
 }
 
@@ -495,6 +503,8 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     // after a coverage-expanding effect, wherever the floor is not fully transparent).
     const PixelRect composite_area = expanding ? canvas : step.scissor;
     accumulation_.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    // Same layout, but the tile pass's stencil writes must be visible to the composite's load.
+    stencil.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
     VkRenderingAttachmentInfo accum_info = color_attachment(accumulation_.view(), false);
     stencil_info.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
     stencil_info.storeOp = VK_ATTACHMENT_STORE_OP_NONE;

@@ -9,6 +9,7 @@
 
 #include <acetate/effect.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <memory>
@@ -131,6 +132,10 @@ public:
                  std::span<const float> rgba) {
         if (rgba.size() != size_t(width) * height * 4)
             throw std::invalid_argument("texture \"" + name + "\": expected width*height*4 floats");
+        // add_texture was appended to the table: a host whose table ends before it lacks it.
+        if (host_.struct_size < offsetof(AcetateHostApi, add_texture) + sizeof(void*) ||
+            !host_.add_texture)
+            throw HostRefused("this host does not support add_texture");
         const AcetateTextureDesc desc{name.c_str(), width, height, rgba.data()};
         check(host_.add_texture(graph_, &desc), "add_texture", name);
     }
