@@ -1,0 +1,168 @@
+#pragma once
+// The validation registry: which plugin (id + version) has reached which validation stage, on
+// whose sign-off and on what automated evidence (DESIGN.md, "Validation stages";
+// docs/registry.md for the workflow and the file format).
+//
+//   UNVALIDATED -> REVIEWED -> ALPHA_TESTED -> INTEGRATED -> VALIDATED, never skipped.
+//
+// A stage is never stored as a bare claim: it is derived from the records that prove it.
+//   REVIEWED      needs a review sign-off bound to the plugin's source digest;
+//   ALPHA_TESTED  adds alpha evidence bound to the binary's SHA-256;
+//   INTEGRATED    adds integration evidence bound to the same binary;
+//   VALIDATED     adds a promotion sign-off bound to the source digest.
+// So a rebuilt binary falls back to REVIEWED (its sign-offs still hold) and must re-run the
+// automated stages; a source change falls back to UNVALIDATED. A promotion survives a rebuild
+// of the same source: once the automated stages pass again the plugin is VALIDATED again,
+// which is how committed sign-offs validate the shipped plugins on a fresh build.
+//
+// Errors: every refused operation returns InvalidInput with one line naming the plugin and
+// the rule; file problems return Io (or InvalidInput for a malformed file) naming the file and
+// the field. Nothing is ever thrown.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/result.hpp"
+
+namespace acetate {
+
+enum class ValidationStage { Unvalidated, Reviewed, AlphaTested, Integrated, Validated };
+
+// "UNVALIDATED", "REVIEWED", "ALPHA_TESTED", "INTEGRATED", "VALIDATED": the file's and the
+// messages' spelling.
+const char* to_string(ValidationStage stage);
+// The names above in any case, '-' accepted for '_' (so the CLI's "alpha-tested" parses).
+std::optional<ValidationStage> parse_validation_stage(std::string_view name);
+
+// A maintainer's sign-off: a review (-> REVIEWED) or a promotion (-> VALIDATED).
+struct SignOff {
+    std::string by;             // who; never empty
+    std::string at;             // when, ISO-8601 UTC: 2025-11-22T08:51:00Z
+    std::string notes;          // free text, may be empty
+    std::string source_digest;  // the source it vouches for
+    bool operator==(const SignOff&) const = default;
+};
+
+// The evidence of one passing automated stage run (ALPHA_TESTED or INTEGRATED).
+struct StageEvidence {
+    std::string at;                          // ISO-8601 UTC; left empty, recording fills in now
+    std::string harness_version;             // never empty
+    std::string summary;                     // one line for people
+    std::map<std::string, uint64_t> counts;  // verdict -> cases: PASS, WARN, SKIP, ...
+    std::string report;                      // where the run's report is; may be empty
+    std::string binary_sha256;               // what it ran on; set by record_evidence
+    bool operator==(const StageEvidence&) const = default;
+};
+
+// One plugin version: the binary and source it was last recorded with, and the records.
+struct RegistryEntry {
+    std::string id;       // reverse-DNS, as in the descriptor
+    std::string version;  // "MAJOR.MINOR.PATCH"
+    std::string binary_sha256, source_digest;
+    std::optional<SignOff> review, promotion;
+    std::optional<StageEvidence> alpha_tested, integrated;
+
+    // The highest stage whose records (and all earlier ones) bind to this binary and source.
+    ValidationStage stage_for(std::string_view binary_sha256, std::string_view source_digest) const;
+    // The same for the binary and source recorded in the entry.
+    ValidationStage stage() const { return stage_for(binary_sha256, source_digest); }
+    bool operator==(const RegistryEntry&) const = default;
+};
+
+class Registry {
+  public:
+    static constexpr std::string_view kFormat = "acetate-registry/1";
+    // Returns "now" for new records; tests replace it to get fixed times.
+    using Clock = std::function<std::string()>;
+
+    Registry();
+
+    // Parses `json_text`; errors start with `name` and give the field path, e.g.
+    // `registry.json: plugins[2].review.at: "yesterday" is not ISO-8601 UTC`.
+    static Result<Registry> parse(std::string_view json_text, std::string_view name);
+    // Reads `file`. A missing file is an empty registry (nothing validated yet); Io when it
+    // exists but cannot be read; InvalidInput when malformed. Needs no lock: writers replace the
+    // file atomically, so a reader sees one complete version.
+    static Result<Registry> load(const std::filesystem::path& file);
+    // The file's bytes: entries sorted by id, then version; the same registry gives the same
+    // bytes (the file is meant to be committed and diffed).
+    std::string to_json() const;
+    // Writes `file` atomically (temp sibling, fsync, rename). Concurrent writers must use
+    // update(), which holds the lock.
+    Result<void> save(const std::filesystem::path& file) const;
+
+    // Read-modify-write under an exclusive flock on `<file>.lock`: loads `file`, runs `change`,
+    // and if it succeeds writes `file` atomically (and `markdown`, when not empty, rendered
+    // from the result). If `change` fails nothing is written and its error is returned. Holds
+    // the lock only for this call, so `change` must be quick (record results, don't run checks)
+    // and must not fork. Under the lock, temporaries left by a killed writer are removed.
+    static Result<void> update(const std::filesystem::path& file,
+                               const std::function<Result<void>(Registry&)>& change,
+                               const std::filesystem::path& markdown = {});
+
+    // Sorted by id, then version (numerically).
+    const std::vector<RegistryEntry>& entries() const { return entries_; }
+    const RegistryEntry* find(std::string_view id, std::string_view version) const;
+
+    // Records a review of the plugin built from `source_digest` as `binary_sha256`: REVIEWED
+    // (or the stage it had, when re-reviewing the same source). Refused when `reviewer` is
+    // empty or an argument is malformed. A new binary or source replaces the entry's; records
+    // bound to the old ones are dropped.
+    Result<void> record_review(std::string_view id, std::string_view version,
+                               std::string_view binary_sha256, std::string_view source_digest,
+                               std::string_view reviewer, std::string_view notes);
+    // Records a passing run of `stage` (AlphaTested or Integrated) on `binary_sha256`. Refused
+    // unless the plugin holds the stage before it for this binary and source (the message
+    // names the missing stage), or when `evidence` counts any FAIL, CRASH or TIMEOUT.
+    // Re-recording a stage already held replaces its evidence.
+    Result<void> record_evidence(std::string_view id, std::string_view version,
+                                 std::string_view binary_sha256, std::string_view source_digest,
+                                 ValidationStage stage, StageEvidence evidence);
+    // INTEGRATED -> VALIDATED for the entry's recorded binary and source; refused from any
+    // other stage, or when `by` is empty.
+    Result<void> promote(std::string_view id, std::string_view version, std::string_view by,
+                         std::string_view notes);
+
+    // The stage this exact binary and source hold (UNVALIDATED when the plugin is unknown).
+    ValidationStage effective_stage(std::string_view id, std::string_view version,
+                                    std::string_view binary_sha256,
+                                    std::string_view source_digest) const;
+    // Host policy: some version of `id` is VALIDATED for exactly this binary.
+    bool is_validated(std::string_view id, std::string_view binary_sha256) const;
+    // Host policy with a reason: ok when VALIDATED, else InvalidInput naming the plugin, its
+    // stage and the first missing record, e.g. `org.acetate.bloom 1.0.0: is REVIEWED, not
+    // VALIDATED: no ALPHA_TESTED evidence for binary 3f2a9c1e0b7d (recorded for 9e1b44a0c2d1)`.
+    Result<void> require_validated(std::string_view id, std::string_view version,
+                                   std::string_view binary_sha256,
+                                   std::string_view source_digest) const;
+
+    void set_clock(Clock clock) { clock_ = std::move(clock); }
+
+  private:
+    RegistryEntry& entry_for(std::string_view id, std::string_view version);
+
+    std::vector<RegistryEntry> entries_;
+    Clock clock_;
+};
+
+// VALIDATION-REGISTRY.md: a table (plugin, version, stage, short hashes, who/when of each
+// sign-off and evidence), then each plugin's notes, summaries and report paths. `source_name`
+// is the JSON file it says it was generated from.
+std::string render_registry_markdown(const Registry& registry, std::string_view source_name);
+// Renders and writes `file` atomically.
+Result<void> write_registry_markdown(const Registry& registry, const std::filesystem::path& file,
+                                     std::string_view source_name);
+
+// Lowercase hex SHA-256 of a file's bytes (a plugin binary); Io naming the file on failure.
+Result<std::string> file_sha256(const std::filesystem::path& file);
+// The current time as ISO-8601 UTC, whole seconds: 2025-11-22T08:51:00Z.
+std::string utc_now_iso8601();
+
+}  // namespace acetate
