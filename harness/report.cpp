@@ -1,0 +1,2 @@
+// Placeholder: filled in by the report implementation.
+#include "report.hpp"

@@ -1,0 +1,127 @@
+#pragma once
+// What one `acetate-harness validate` run found, and how it is written out: report.json for
+// machines, index.html for people (docs/harness.md describes both).
+//
+// A run is a list of cases (an input scenario: sizes/1x1, params/max, ...), each run in its own
+// child process. A case evaluates several checks (premultiplied, coverage, ...); a check's
+// verdict over the run is the worst of its verdicts over the cases.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/result.hpp"
+
+namespace acetate::harness {
+
+// Ordered by severity: a check's overall verdict is the maximum over its cases.
+enum class Verdict { Pass = 0, Skip = 1, Warn = 2, Fail = 3, Timeout = 4, Crash = 5 };
+const char* to_string(Verdict verdict);  // "PASS", "SKIP", "WARN", "FAIL", "TIMEOUT", "CRASH"
+std::optional<Verdict> parse_verdict(std::string_view name);
+// FAIL, TIMEOUT and CRASH fail a run (non-zero exit, no evidence recorded).
+bool is_failing(Verdict verdict);
+
+// One offending pixel: where, on which floor (-1: the composite / a global effect's output),
+// the values before and after the effect, and what is wrong with them.
+struct Violation {
+    int64_t x = 0, y = 0;
+    int64_t floor = -1;
+    std::array<float, 4> input{0, 0, 0, 0};   // premultiplied rgba going in
+    std::array<float, 4> output{0, 0, 0, 0};  // premultiplied rgba coming out
+    std::string what;                         // e.g. "a = 0 but rgb = (0.25, 0, 0)"
+};
+
+// One check's verdict in one case.
+struct CheckResult {
+    std::string check;      // "premultiplied", "coverage", ...
+    Verdict verdict = Verdict::Pass;
+    std::string message;    // one line: what was checked and the threshold, or what failed
+    uint64_t violations = 0;          // offending pixels (all of them, not only the examples)
+    std::vector<Violation> examples;  // the first few, for the report
+    // Images for the report, relative to the report directory, by role: "heatmap.floor0", ...
+    std::map<std::string, std::string> images;
+};
+
+// One case: a child process that rendered one scenario and evaluated its checks.
+struct CaseResult {
+    std::string id;           // "sizes/1x1", "params/random-3", ...; unique in a run
+    std::string description;  // one line for people
+    uint64_t seed = 0;        // reproduces the case's inputs and parameters
+    Verdict verdict = Verdict::Pass;  // the worst of its checks, or CRASH / TIMEOUT
+    std::string message;              // for CRASH / TIMEOUT: the signal or the time limit
+    std::vector<CheckResult> checks;
+    // Input and output pictures, relative to the report directory, by role: "input.floor0",
+    // "output.floor0", "composite", ...
+    std::map<std::string, std::string> images;
+    double seconds = 0;          // wall time of the child
+    std::string reproduce;       // the command line that re-runs exactly this case
+    std::string log;             // the child's stderr, last lines
+    std::string output_digest;   // SHA-256 of the outputs it read back (determinism)
+};
+
+// An automated stage the run tried, and what came of it.
+struct StageRun {
+    std::string stage;        // "ALPHA_TESTED" / "INTEGRATED"
+    bool passed = false;      // no failing verdict
+    bool recorded = false;    // evidence went into the registry
+    std::string note;         // why it was not recorded, or where
+};
+
+// One sign-off or evidence line of the plugin's history in the registry.
+struct HistoryLine {
+    std::string at, what, by;  // when, "review" / "ALPHA_TESTED evidence" / ..., who or harness
+    std::string notes;
+};
+
+struct ValidationReport {
+    std::string harness_version;
+    std::string plugin_file;     // as given
+    std::string id, version, display_name;
+    std::string scope;           // "floor" / "global"
+    std::string coverage;        // "preserving" / "expanding"
+    std::string binary_sha256, source_digest;
+    std::string stage_before, stage_after;  // registry stages, e.g. "REVIEWED"
+    int strictness = 5;
+    uint64_t seed = 0;
+    std::string started_at;      // ISO-8601 UTC
+    double seconds = 0;
+    std::vector<StageRun> stages;
+    std::vector<CaseResult> cases;
+    std::vector<HistoryLine> history;
+    std::string error;  // set when the run could not start (the plugin did not load, ...)
+};
+
+// A check's overall verdict and how many cases gave each verdict.
+struct CheckSummary {
+    std::string check;
+    Verdict verdict = Verdict::Skip;
+    std::map<Verdict, uint64_t> cases;
+    std::string first_failure;  // "params/max: ..." for the first failing case, if any
+};
+std::vector<CheckSummary> summarize_checks(const ValidationReport& report);
+// Case verdict -> number of cases, with the names of registry evidence ("PASS", "FAIL", ...).
+std::map<std::string, uint64_t> count_verdicts(const ValidationReport& report);
+bool run_failed(const ValidationReport& report);
+
+nlohmann::json to_json(const Violation& violation);
+nlohmann::json to_json(const CheckResult& check);
+nlohmann::json to_json(const CaseResult& result);
+nlohmann::json to_json(const ValidationReport& report);
+// The inverse of to_json(CaseResult): how the parent reads a child's result file.
+Result<CaseResult> case_result_from_json(const nlohmann::json& json, std::string_view name);
+
+// report.json, written atomically.
+Result<void> write_json_report(const ValidationReport& report, const std::filesystem::path& file);
+// index.html in `directory`: a summary table per check, then per case its checks, violation
+// examples and images (paths as in the report, relative to `directory`), the stage history
+// and how to reproduce each failure. Self-contained apart from the images; written atomically.
+Result<void> write_html_report(const ValidationReport& report, const std::filesystem::path& directory);
+
+}  // namespace acetate::harness

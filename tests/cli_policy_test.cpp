@@ -1,0 +1,2 @@
+// Placeholder: filled in with the host policy tests.
+#include <gtest/gtest.h>

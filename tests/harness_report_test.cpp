@@ -1,0 +1,2 @@
+// Placeholder: filled in with the report tests.
+#include <gtest/gtest.h>
