@@ -138,6 +138,18 @@ std::string first_missing_record(const RegistryEntry* e, std::string_view binary
     return "";
 }
 
+// The entry of `id` (any id when empty) recorded with this binary that holds the highest
+// stage; null when none was.
+const RegistryEntry* best_for_binary(const std::vector<RegistryEntry>& entries,
+                                     std::string_view id, std::string_view binary) {
+    const RegistryEntry* best = nullptr;
+    for (const RegistryEntry& e : entries)
+        if ((id.empty() || e.id == id) && e.binary_sha256 == binary &&
+            (!best || int(e.stage()) > int(best->stage())))
+            best = &e;
+    return best;
+}
+
 // Moves `e` to a new binary and source: records bound to other ones no longer hold.
 void rebind(RegistryEntry& e, std::string_view binary, std::string_view source) {
     if (e.review && e.review->source_digest != source) e.review.reset();
@@ -546,6 +558,31 @@ Result<void> Registry::require_validated(std::string_view id, std::string_view v
         id, version,
         fmt::format("is {}, not VALIDATED: {}", to_string(held),
                     first_missing_record(find(id, version), binary_sha256, source_digest)));
+}
+
+ValidationStage Registry::binary_stage(std::string_view id, std::string_view binary_sha256) const {
+    const RegistryEntry* e = best_for_binary(entries_, id, binary_sha256);
+    return e ? e->stage() : ValidationStage::Unvalidated;
+}
+
+std::string Registry::explain(std::string_view id, std::string_view binary_sha256) const {
+    if (const RegistryEntry* e = best_for_binary(entries_, id, binary_sha256)) {
+        const ValidationStage held = e->stage();
+        std::string out = fmt::format("{} is {} for this binary", plugin_name(e->id, e->version),
+                                      to_string(held));
+        if (held != ValidationStage::Validated)
+            out += ": " + first_missing_record(e, binary_sha256, e->source_digest);
+        return out;
+    }
+    if (id.empty()) return "this binary is UNVALIDATED: no record of it";
+    std::vector<std::string> others;
+    for (const RegistryEntry& e : entries_)
+        if (e.id == id)
+            others.push_back(fmt::format("{} {} for {}", e.version, to_string(e.stage()),
+                                         short_hash(e.binary_sha256)));
+    if (others.empty()) return fmt::format("{} is UNVALIDATED: no record of it", id);
+    return fmt::format("{} is UNVALIDATED for this binary: recorded only for other binaries: {}",
+                       id, fmt::join(others, ", "));
 }
 
 // ---- the file -------------------------------------------------------------------------------

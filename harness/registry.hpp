@@ -143,6 +143,22 @@ class Registry {
                                    std::string_view binary_sha256,
                                    std::string_view source_digest) const;
 
+    // Host policy before loading: the host knows the file's SHA-256 but not yet its version or
+    // source digest (reading the descriptor means loading it). The highest stage any version
+    // of `id` holds for exactly this binary (UNVALIDATED when none was recorded with it);
+    // an empty `id` matches every plugin (for a file loaded by path, judged by its bytes
+    // alone). binary_stage(id, sha) == VALIDATED exactly when is_validated(id, sha).
+    ValidationStage binary_stage(std::string_view id, std::string_view binary_sha256) const;
+    // Why, in one line: the stage this binary holds and the first record it lacks, or what the
+    // registry has instead. E.g.
+    //   `org.acetate.bloom 1.2.0 is REVIEWED for this binary: no ALPHA_TESTED evidence for
+    //   binary 5be01c77a4d2`,
+    //   `org.acetate.bloom is UNVALIDATED for this binary: recorded only for other binaries:
+    //   1.2.0 VALIDATED for 3f2a9c1e0b7d`,
+    //   `org.acetate.bloom is UNVALIDATED: no record of it`,
+    //   `org.acetate.bloom 1.2.0 is VALIDATED for this binary`.
+    std::string explain(std::string_view id, std::string_view binary_sha256) const;
+
     void set_clock(Clock clock) { clock_ = std::move(clock); }
 
   private:

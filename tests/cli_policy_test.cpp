@@ -1,2 +1,388 @@
-// Placeholder: filled in with the host policy tests.
+// The host load policy of `acetate render` (docs/registry.md, "Host policy"): a plugin is
+// loaded only if the validation registry has it VALIDATED for its exact binary (SHA-256);
+// anything else is refused with one line before the library is opened, unless
+// --allow-unvalidated, which loads it with one warning line. `--registry FILE` or
+// ACETATE_REGISTRY pick the registry.
+//
+// Each test works on its own copy of lighting.so in a private --plugin-path folder, so the
+// registry can pin that copy and a test can change its bytes. Whether the copy was opened is
+// read from the dynamic linker's own log (LD_DEBUG=files, written to LD_DEBUG_OUTPUT files).
+
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "plugins/plugin_loader.hpp"
+#include "registry.hpp"
+#include "registry_location.hpp"
+#include "scene/image_io.hpp"
+#include "test_files.hpp"
+
+namespace acetate {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quoted(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string read_all(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty()) lines.push_back(line);
+    return lines;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+struct CliRun {
+    int code = -1;  // exit status; -1 when killed by a signal
+    std::string out, err;
+    std::string ld_log;  // the dynamic linker's LD_DEBUG=files output, every process
+    std::string command;
+
+    std::string describe() const {
+        return "command: " + command + "\nexit code: " + std::to_string(code) +
+               "\n--- stdout ---\n" + out + "--- stderr ---\n" + err;
+    }
+};
+
+class HostPolicy : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = test::scratch_dir();
+        plugins_ = dir_ / "plugins";
+        fs::create_directories(plugins_);
+        // The copy the CLI finds first, and a byte-identical one this test process reads the
+        // descriptor from (so the file a test later changes was never mapped here).
+        const fs::path built = fs::path(ACETATE_PLUGIN_DIR) / "lighting.so";
+        ASSERT_TRUE(fs::is_regular_file(built)) << built;
+        fs::copy_file(built, plugin_file());
+        fs::create_directories(dir_ / "probe");
+        fs::copy_file(built, dir_ / "probe" / "lighting.so");
+
+        ImageRGBA tile(16, 16);
+        for (size_t i = 0; i < tile.pixels.size(); ++i)
+            tile.pixels[i] = (i % 4 == 3) ? 1.0f : 0.4f;
+        test::write_exr(dir_ / "tile.exr", tile);
+        test::write_text(dir_ / "scene.json", scene_text(true));
+        test::write_text(dir_ / "plain.json", scene_text(false));
+    }
+
+    static std::string scene_text(bool with_lighting) {
+        const std::string effects =
+            with_lighting ? R"([{"plugin": "acetate.lighting", "params": {"day": 0.5}}])" : "[]";
+        return R"({"format": "acetate-scene/1", "canvas": {"width": 16, "height": 16},
+  "floors": [{"name": "ground", "tiles": [{"image": "tile.exr", "rect": [0, 0, 16, 16]}],
+              "lights": [{"pos": [8, 8], "radius": 6, "color": [1, 1, 1], "intensity": 1}],
+              "effects": )" +
+               effects + "}]}\n";
+    }
+
+    fs::path plugin_file() const { return plugins_ / "lighting.so"; }
+
+    // Runs `acetate render ARGS --plugin-path <private copy>` in the test folder; `env` is put
+    // before the command (e.g. "ACETATE_REGISTRY='...'").
+    CliRun render(const std::string& args, const std::string& env = "") {
+        static int counter = 0;
+        const std::string n = std::to_string(counter++);
+        const fs::path out_file = dir_ / ("stdout-" + n + ".txt");
+        const fs::path err_file = dir_ / ("stderr-" + n + ".txt");
+        const fs::path ld_dir = dir_ / ("ld-" + n);
+        fs::create_directories(ld_dir);
+        const fs::path cache = fs::temp_directory_path() / "acetate-policy-test-cache";
+        fs::create_directories(cache / "mesa");
+        fs::create_directories(cache / "xdg");
+        const char* mesa_env = std::getenv("MESA_SHADER_CACHE_DIR");
+        const char* xdg_env = std::getenv("XDG_CACHE_HOME");
+        CliRun run;
+        run.command =
+            "cd " + quoted(dir_.string()) + " && ACETATE_VALIDATION=1 MESA_SHADER_CACHE_DIR=" +
+            quoted(mesa_env && *mesa_env ? mesa_env : (cache / "mesa").string()) +
+            " XDG_CACHE_HOME=" + quoted(xdg_env && *xdg_env ? xdg_env : (cache / "xdg").string()) +
+            " LD_DEBUG=files LD_DEBUG_OUTPUT=" + quoted((ld_dir / "ld").string()) + " " + env +
+            " " + quoted(ACETATE_CLI_PATH) + " render " + args + " --plugin-path " +
+            quoted(plugins_.string());
+        const int raw = std::system((run.command + " >" + quoted(out_file.string()) + " 2>" +
+                                     quoted(err_file.string()) + " </dev/null")
+                                        .c_str());
+        run.code = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+        run.out = read_all(out_file);
+        run.err = read_all(err_file);
+        for (const auto& item : fs::directory_iterator(ld_dir)) run.ld_log += read_all(item.path());
+        return run;
+    }
+
+    // Whether the process opened the private copy of the plugin (dlopen logs "file=<path>").
+    static bool opened_the_copy(const CliRun& run, const fs::path& file) {
+        return contains(run.ld_log, "file=" + file.string());
+    }
+
+    // A registry at `file` where the probe copy (byte-identical to the plugin copy) is
+    // VALIDATED, recorded through the registry API as the harness would.
+    void write_validated_registry(const fs::path& file) {
+        const fs::path probe = dir_ / "probe" / "lighting.so";
+        EffectDescriptor d;
+        {
+            PluginLoader loader({});
+            auto plugin = loader.load_file(probe);
+            ASSERT_TRUE(plugin) << plugin.error().message;
+            d = plugin.value()->descriptor;
+        }
+        ASSERT_EQ(d.id, "acetate.lighting");
+        ASSERT_FALSE(d.source_digest.empty()) << "lighting.so was built without a source digest";
+        auto sha = file_sha256(probe);
+        ASSERT_TRUE(sha) << sha.error().message;
+        ASSERT_EQ(sha.value(), file_sha256(plugin_file()).value());
+        StageEvidence run;
+        run.harness_version = "policy-test";
+        run.summary = "recorded by cli_policy_test";
+        run.counts = {{"PASS", 1}};
+        Registry r;
+        const std::string version = d.version_string();
+        ASSERT_TRUE(r.record_review(d.id, version, *sha, d.source_digest, "policy-test", ""));
+        ASSERT_TRUE(r.record_evidence(d.id, version, *sha, d.source_digest,
+                                      ValidationStage::AlphaTested, run));
+        ASSERT_TRUE(r.record_evidence(d.id, version, *sha, d.source_digest,
+                                      ValidationStage::Integrated, run));
+        ASSERT_TRUE(r.promote(d.id, version, "policy-test", ""));
+        ASSERT_TRUE(r.is_validated(d.id, *sha));
+        ASSERT_TRUE(r.save(file));
+        validated_sha_ = *sha;
+    }
+
+    fs::path dir_, plugins_;
+    std::string validated_sha_;
+};
+
+// (a) Nothing validated: refused in one line, the library never opened, nothing written.
+TEST_F(HostPolicy, AnEmptyRegistryRefusesThePluginInOneLine) {
+    const fs::path registry = dir_ / "no-such-registry.json";
+    const CliRun run = render("scene.json -o out.png --registry " + quoted(registry.string()));
+    EXPECT_EQ(run.code, 1) << run.describe();
+    const auto lines = lines_of(run.err);
+    ASSERT_EQ(lines.size(), 1u) << run.describe();
+    for (const std::string& part :
+         {std::string("acetate: scene.json: floors[0].effects[0]"), std::string("acetate.lighting"),
+          std::string("UNVALIDATED"), plugin_file().string(),
+          "registry " + registry.string() + " (no such file)",
+          std::string("not VALIDATED for this binary"), std::string("--allow-unvalidated")})
+        EXPECT_TRUE(contains(lines[0], part)) << "missing \"" << part << "\": " << lines[0];
+    EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+    EXPECT_FALSE(opened_the_copy(run, plugin_file())) << run.ld_log;
+    EXPECT_FALSE(fs::exists(registry)) << "the reader must not create the registry";
+}
+
+// (b) VALIDATED for this exact binary: loads and renders, with --registry or ACETATE_REGISTRY.
+TEST_F(HostPolicy, AValidatedBinaryRenders) {
+    const fs::path registry = dir_ / "registry.json";
+    write_validated_registry(registry);
+    if (HasFatalFailure()) return;
+
+    CliRun run = render("scene.json -o out.png --registry " + quoted(registry.string()));
+    EXPECT_EQ(run.code, 0) << run.describe();
+    EXPECT_TRUE(run.err.empty()) << run.describe();
+    EXPECT_TRUE(fs::exists(dir_ / "out.png")) << run.describe();
+    EXPECT_TRUE(opened_the_copy(run, plugin_file())) << run.describe();
+
+    run = render("scene.json -o env.png", "ACETATE_REGISTRY=" + quoted(registry.string()));
+    EXPECT_EQ(run.code, 0) << run.describe();
+    EXPECT_TRUE(run.err.empty()) << run.describe();
+    EXPECT_TRUE(fs::exists(dir_ / "env.png")) << run.describe();
+
+    // --registry wins over ACETATE_REGISTRY.
+    test::write_text(dir_ / "broken.json", "{ not a registry");
+    run = render("scene.json -o flag.png --registry " + quoted(registry.string()),
+                 "ACETATE_REGISTRY=" + quoted((dir_ / "broken.json").string()));
+    EXPECT_EQ(run.code, 0) << run.describe();
+    EXPECT_TRUE(fs::exists(dir_ / "flag.png")) << run.describe();
+}
+
+// (c) One byte changed after validation: another binary, refused before it is opened.
+TEST_F(HostPolicy, AChangedBinaryIsRefused) {
+    const fs::path registry = dir_ / "registry.json";
+    write_validated_registry(registry);
+    if (HasFatalFailure()) return;
+    std::string bytes = read_all(plugin_file());
+    ASSERT_FALSE(bytes.empty());
+    bytes.back() = char(bytes.back() ^ 0xff);
+    test::write_text(plugin_file(), bytes);
+    auto changed_sha = file_sha256(plugin_file());
+    ASSERT_TRUE(changed_sha);
+    ASSERT_NE(changed_sha.value(), validated_sha_);
+
+    const CliRun run = render("scene.json -o out.png --registry " + quoted(registry.string()));
+    EXPECT_EQ(run.code, 1) << run.describe();
+    const auto lines = lines_of(run.err);
+    ASSERT_EQ(lines.size(), 1u) << run.describe();
+    for (const std::string& part :
+         {std::string("acetate.lighting"), plugin_file().string(),
+          std::string("not VALIDATED for this binary"),
+          "SHA-256 " + changed_sha->substr(0, 12),  // the binary it has
+          std::string("UNVALIDATED for this binary"),
+          "VALIDATED for " + validated_sha_.substr(0, 12),  // the binary the registry has
+          std::string("--allow-unvalidated")})
+        EXPECT_TRUE(contains(lines[0], part)) << "missing \"" << part << "\": " << lines[0];
+    EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+    EXPECT_FALSE(opened_the_copy(run, plugin_file())) << run.ld_log;
+}
+
+// (d) --allow-unvalidated: loads it anyway, with one warning line naming it.
+TEST_F(HostPolicy, AllowUnvalidatedLoadsWithAWarning) {
+    const fs::path registry = dir_ / "no-such-registry.json";
+    const CliRun run =
+        render("scene.json -o out.png --allow-unvalidated --registry " + quoted(registry.string()));
+    EXPECT_EQ(run.code, 0) << run.describe();
+    const auto lines = lines_of(run.err);
+    ASSERT_EQ(lines.size(), 1u) << run.describe();
+    EXPECT_EQ(lines[0].rfind("acetate: warning: loading unvalidated plugin acetate.lighting (" +
+                                 plugin_file().string() + "): ",
+                             0),
+              0u)
+        << lines[0];
+    EXPECT_TRUE(contains(lines[0], "UNVALIDATED")) << lines[0];
+    EXPECT_TRUE(fs::exists(dir_ / "out.png")) << run.describe();
+    EXPECT_TRUE(opened_the_copy(run, plugin_file())) << run.describe();
+}
+
+// A validated plugin needs no flag: --allow-unvalidated then adds no warning.
+TEST_F(HostPolicy, AllowUnvalidatedIsSilentForAValidatedBinary) {
+    const fs::path registry = dir_ / "registry.json";
+    write_validated_registry(registry);
+    if (HasFatalFailure()) return;
+    const CliRun run =
+        render("scene.json -o out.png --allow-unvalidated --registry " + quoted(registry.string()));
+    EXPECT_EQ(run.code, 0) << run.describe();
+    EXPECT_TRUE(run.err.empty()) << run.describe();
+}
+
+// (e) A malformed registry is bad input: one line naming the file, before anything renders.
+TEST_F(HostPolicy, AMalformedRegistryIsOneLineNamingTheFile) {
+    const fs::path registry = dir_ / "registry.json";
+    test::write_text(registry, "{ \"format\": \"acetate-registry/1\", \"plugins\": [ \n");
+    CliRun run = render("scene.json -o out.png --registry " + quoted(registry.string()));
+    EXPECT_EQ(run.code, 1) << run.describe();
+    auto lines = lines_of(run.err);
+    ASSERT_EQ(lines.size(), 1u) << run.describe();
+    EXPECT_TRUE(contains(lines[0], registry.string())) << lines[0];
+    EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+    EXPECT_FALSE(opened_the_copy(run, plugin_file())) << run.ld_log;
+
+    // A hand edit that claims VALIDATED without the records is malformed too, even with
+    // --allow-unvalidated.
+    const std::string sha = file_sha256(plugin_file()).value();
+    test::write_text(registry, R"({"format": "acetate-registry/1", "plugins": [
+  {"id": "acetate.lighting", "version": "1.0.0", "stage": "VALIDATED",
+   "binary_sha256": ")" + sha + R"(", "source_digest": ")" + sha + R"("}]})");
+    run = render("scene.json -o out.png --allow-unvalidated --registry " +
+                 quoted(registry.string()));
+    EXPECT_EQ(run.code, 1) << run.describe();
+    lines = lines_of(run.err);
+    ASSERT_EQ(lines.size(), 1u) << run.describe();
+    EXPECT_TRUE(contains(lines[0], registry.string() + ": plugins[0]")) << lines[0];
+    EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+}
+
+// (f) A scene without plugins involves no policy: the registry is not even read.
+TEST_F(HostPolicy, ASceneWithoutPluginsNeedsNoRegistry) {
+    CliRun run = render("plain.json -o empty.png --registry " +
+                        quoted((dir_ / "no-such-registry.json").string()));
+    EXPECT_EQ(run.code, 0) << run.describe();
+    EXPECT_TRUE(run.err.empty()) << run.describe();
+    EXPECT_TRUE(fs::exists(dir_ / "empty.png"));
+
+    test::write_text(dir_ / "broken.json", "{ not a registry");
+    run = render("plain.json -o broken.png --registry " + quoted((dir_ / "broken.json").string()));
+    EXPECT_EQ(run.code, 0) << run.describe();
+    EXPECT_TRUE(fs::exists(dir_ / "broken.png"));
+}
+
+// Neither --registry nor ACETATE_REGISTRY: the build tree's registry decides. Whatever it
+// holds (a harness run may have validated the build's lighting.so, whose bytes the copy has),
+// the outcome is the one it implies, and a refusal names that file.
+TEST_F(HostPolicy, WithoutFlagOrEnvironmentTheBuildTreeRegistryDecides) {
+    ::unsetenv("ACETATE_REGISTRY");
+    const fs::path default_file = registry_path(std::nullopt);
+    const CliRun run = render("scene.json -o out.png", "env -u ACETATE_REGISTRY");
+    const auto lines = lines_of(run.err);
+    auto registry = Registry::load(default_file);
+    const std::string sha = file_sha256(plugin_file()).value();
+    if (registry && registry->is_validated("acetate.lighting", sha)) {
+        EXPECT_EQ(run.code, 0) << run.describe();
+        EXPECT_TRUE(run.err.empty()) << run.describe();
+        EXPECT_TRUE(fs::exists(dir_ / "out.png")) << run.describe();
+    } else {
+        EXPECT_EQ(run.code, 1) << run.describe();
+        ASSERT_EQ(lines.size(), 1u) << run.describe();
+        EXPECT_TRUE(contains(lines[0], default_file.string())) << lines[0];
+        EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+    }
+}
+
+// A refused plugin fails its scene only: the other scenes render, the exit status is 1.
+TEST_F(HostPolicy, ARefusedSceneLetsTheOthersRender) {
+    const CliRun run = render("plain.json scene.json plain.json -o out.png --registry " +
+                              quoted((dir_ / "no-such-registry.json").string()));
+    EXPECT_EQ(run.code, 1) << run.describe();
+    const auto lines = lines_of(run.err);
+    ASSERT_EQ(lines.size(), 1u) << run.describe();
+    EXPECT_TRUE(contains(lines[0], "scene.json: floors[0].effects[0]")) << lines[0];
+    EXPECT_TRUE(fs::exists(dir_ / "out.scene0.png")) << run.describe();
+    EXPECT_FALSE(fs::exists(dir_ / "out.scene1.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "out.scene2.png")) << run.describe();
+}
+
+// The loader itself: the hook runs before the file is opened, for load() and load_file().
+TEST_F(HostPolicy, TheLoaderAsksBeforeOpening) {
+    std::vector<std::pair<std::string, fs::path>> asked;
+    PluginLoader loader({plugins_});
+    loader.set_admission([&](const std::string& id, const fs::path& file) -> Result<void> {
+        asked.emplace_back(id, file);
+        return make_error(ErrorCode::InvalidInput, "refused by the test");
+    });
+    // A file that is not a library at all: opening it would fail with dlopen's message.
+    const fs::path junk = dir_ / "junk.so";
+    test::write_text(junk, "not an ELF file");
+    auto by_file = loader.load_file(junk);
+    ASSERT_FALSE(by_file);
+    EXPECT_EQ(by_file.error().message, "refused by the test");
+    auto by_id = loader.load("acetate.lighting");
+    ASSERT_FALSE(by_id);
+    EXPECT_EQ(by_id.error().message, "refused by the test");
+    ASSERT_EQ(asked.size(), 2u);
+    EXPECT_EQ(asked[0], std::make_pair(std::string(), junk));
+    EXPECT_EQ(asked[1], std::make_pair(std::string("acetate.lighting"), plugin_file()));
+    EXPECT_EQ(loader.loaded_count(), 0u);
+
+    // Admitted: loaded, and asked once per id.
+    asked.clear();
+    loader.set_admission([&](const std::string& id, const fs::path& file) -> Result<void> {
+        asked.emplace_back(id, file);
+        return {};
+    });
+    ASSERT_TRUE(loader.load("acetate.lighting"));
+    ASSERT_TRUE(loader.load("acetate.lighting"));
+    EXPECT_EQ(asked.size(), 1u);
+    EXPECT_EQ(loader.loaded_count(), 1u);
+}
+
+}  // namespace
+}  // namespace acetate

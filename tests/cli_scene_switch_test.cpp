@@ -23,12 +23,15 @@ struct CliRun {
     std::string err;
 };
 
+// Runs `acetate render ARGS --allow-unvalidated`: these tests load the built plugins, which
+// the registry need not have validated (the host policy is tested in cli_policy_test.cpp).
 CliRun run_cli(const std::string& args, const std::filesystem::path& dir,
             const std::filesystem::path& cache_home) {
     const auto err = dir / "stderr.txt";
     const std::string command = "ACETATE_VALIDATION=1 XDG_CACHE_HOME='" + cache_home.string() +
-                                "' '" ACETATE_CLI_PATH "' render " + args + " > '" +
-                                (dir / "stdout.txt").string() + "' 2> '" + err.string() + "'";
+                                "' '" ACETATE_CLI_PATH "' render " + args +
+                                " --allow-unvalidated > '" + (dir / "stdout.txt").string() +
+                                "' 2> '" + err.string() + "'";
     CliRun run;
     const int raw = std::system(command.c_str());
     run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -114,7 +117,13 @@ TEST_F(CliSceneSwitch, ATruncatedPipelineCacheIsIgnoredAndReplaced) {
     run = run_cli(args, dir_, cache_home);
     EXPECT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.err.find("ignoring the pipeline cache"), std::string::npos) << run.err;
-    EXPECT_EQ(run.err.find("validation"), std::string::npos) << run.err;
+    // No validation message (the policy's warning names the registry file, which may sit in
+    // <build>/validation/, so its lines are left out).
+    std::istringstream lines(run.err);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("acetate: warning: loading unvalidated plugin ", 0) == 0) continue;
+        EXPECT_EQ(line.find("validation"), std::string::npos) << run.err;
+    }
 }
 
 TEST_F(CliSceneSwitch, ASceneWithABrokenPluginIsReportedAndTheOthersStillRender) {

@@ -255,6 +255,57 @@ TEST(Registry, IsValidatedPinsTheBinary) {
               "record of it");
 }
 
+// What `acetate render` asks before loading a file: it knows the binary's SHA-256, not yet the
+// plugin's version or source digest.
+TEST(Registry, BinaryStageAndExplainJudgeTheBinaryAlone) {
+    const std::string a = kBinaryA.substr(0, 12), b = kBinaryB.substr(0, 12);
+    Registry r = validated_registry();
+    EXPECT_EQ(r.binary_stage(kId, kBinaryA), Stage::Validated);
+    EXPECT_EQ(r.explain(kId, kBinaryA), "org.acetate.bloom 1.2.0 is VALIDATED for this binary");
+    // An empty id matches any plugin recorded with that binary (a file loaded by path).
+    EXPECT_EQ(r.binary_stage("", kBinaryA), Stage::Validated);
+    EXPECT_EQ(r.explain("", kBinaryA), "org.acetate.bloom 1.2.0 is VALIDATED for this binary");
+
+    // A binary the registry never saw: UNVALIDATED for it, and what the registry has instead.
+    EXPECT_EQ(r.binary_stage(kId, kBinaryB), Stage::Unvalidated);
+    EXPECT_EQ(r.explain(kId, kBinaryB),
+              "org.acetate.bloom is UNVALIDATED for this binary: recorded only for other "
+              "binaries: 1.2.0 VALIDATED for " + a);
+    EXPECT_EQ(r.binary_stage("", kBinaryB), Stage::Unvalidated);
+    EXPECT_EQ(r.explain("", kBinaryB), "this binary is UNVALIDATED: no record of it");
+    // A plugin the registry never saw; the same binary under another id does not count.
+    EXPECT_EQ(r.binary_stage("org.acetate.other", kBinaryA), Stage::Unvalidated);
+    EXPECT_EQ(r.explain("org.acetate.other", kBinaryA),
+              "org.acetate.other is UNVALIDATED: no record of it");
+    EXPECT_EQ(Registry().explain(kId, kBinaryA),
+              "org.acetate.bloom is UNVALIDATED: no record of it");
+
+    // Recorded with this binary but short of VALIDATED: its stage and the first missing record.
+    ASSERT_TRUE(r.record_review(kId, kVersion, kBinaryB, kSource1, "alice", "rebuilt"));
+    EXPECT_EQ(r.binary_stage(kId, kBinaryB), Stage::Reviewed);
+    EXPECT_EQ(r.explain(kId, kBinaryB),
+              "org.acetate.bloom 1.2.0 is REVIEWED for this binary: no ALPHA_TESTED evidence for "
+              "binary " + b);
+    EXPECT_EQ(r.binary_stage(kId, kBinaryA), Stage::Unvalidated);
+    ASSERT_TRUE(
+        r.record_evidence(kId, kVersion, kBinaryB, kSource1, Stage::AlphaTested, passing_run()));
+    EXPECT_EQ(r.explain(kId, kBinaryB),
+              "org.acetate.bloom 1.2.0 is ALPHA_TESTED for this binary: no INTEGRATED evidence "
+              "for binary " + b);
+    // Several versions: the highest stage held for this binary counts, and all are listed.
+    ASSERT_TRUE(r.record_review(kId, "1.3.0", kBinaryA, kSource2, "carol", ""));
+    EXPECT_EQ(r.binary_stage(kId, kBinaryA), Stage::Reviewed);
+    EXPECT_EQ(r.explain(kId, sha256_hex("binary C")),
+              "org.acetate.bloom is UNVALIDATED for this binary: recorded only for other "
+              "binaries: 1.2.0 ALPHA_TESTED for " + b + ", 1.3.0 REVIEWED for " + a);
+
+    // The policy agrees with is_validated for every id and binary asked above.
+    for (const std::string& id : {kId, std::string("org.acetate.other")})
+        for (const std::string& binary : {kBinaryA, kBinaryB})
+            EXPECT_EQ(r.binary_stage(id, binary) == Stage::Validated, r.is_validated(id, binary))
+                << id << " " << binary;
+}
+
 TEST_F(RegistryFiles, JsonRoundTripAndMarkdown) {
     Registry r = validated_registry();
     ASSERT_TRUE(r.record_review("org.acetate.lighting", "1.10.0", kBinaryB, kSource2, "dave",

@@ -38,6 +38,12 @@ int main(int argc, char** argv) {
         ->default_val(0.0f);
     cmd->add_flag("!--no-pipeline-cache", render.pipeline_cache,
                   "Do not read or write the pipeline cache in the user cache directory");
+    cmd->add_option("--registry", render.registry,
+                    "Validation registry that decides which plugins load (default: "
+                    "ACETATE_REGISTRY, else the build tree's validation/registry.json)");
+    cmd->add_flag("--allow-unvalidated", render.allow_unvalidated,
+                  "Load plugins the registry does not have VALIDATED for their exact binary, "
+                  "with a warning");
 
     try {
         app.parse(argc, argv);

@@ -2,11 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <memory>
 
 #include "core/atomic_file.hpp"
 #include "plugins/plugin_loader.hpp"
+#include "registry.hpp"
+#include "registry_location.hpp"
 #include "render/compositor.hpp"
 #include "render/renderer.hpp"
 #include "scene/image_io.hpp"
@@ -31,6 +35,44 @@ std::filesystem::path with_suffix(const std::filesystem::path& output, const std
     std::filesystem::path p = output;
     p.replace_filename(output.stem().string() + suffix + output.extension().string());
     return p;
+}
+
+bool names_a_plugin(const SceneDesc& scene) {
+    return !scene.global_effects.empty() ||
+           std::any_of(scene.floors.begin(), scene.floors.end(),
+                       [](const FloorDesc& f) { return !f.effects.empty(); });
+}
+
+// The host load policy (docs/registry.md, "Host policy"), as the plugin loader's admission
+// hook: it runs before a file is opened, so a refused library's code never runs in this
+// process. A file is admitted when the registry has its id VALIDATED for exactly its SHA-256
+// (for a file loaded by path, with no id yet, any plugin VALIDATED for that SHA-256). Any
+// other file is refused with one line naming it, the stage the registry holds for it and
+// why; with --allow-unvalidated it is admitted with one warning line instead.
+// `registry_name` is how the messages name it: "registry FILE".
+PluginLoader::Admission load_policy(std::shared_ptr<const Registry> registry,
+                                    std::string registry_name, bool allow_unvalidated) {
+    return [registry = std::move(registry), registry_name = std::move(registry_name),
+            allow_unvalidated](const std::string& id,
+                               const std::filesystem::path& file) -> Result<void> {
+        auto sha = file_sha256(file);
+        if (!sha) return sha.error();
+        if (registry->binary_stage(id, sha.value()) == ValidationStage::Validated) return {};
+        const std::string plugin =
+            id.empty() ? file.string() : fmt::format("{} ({})", id, file.string());
+        const std::string why =
+            fmt::format("not VALIDATED for this binary (SHA-256 {}): {}: {}", sha->substr(0, 12),
+                        registry_name, registry->explain(id, *sha));
+        if (allow_unvalidated) {
+            std::fprintf(stderr, "acetate: warning: loading unvalidated plugin %s: %s\n",
+                         plugin.c_str(), why.c_str());
+            return {};
+        }
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{} is {}; run acetate-harness validate {}, or pass "
+                                      "--allow-unvalidated",
+                                      plugin, why, file.string()));
+    };
 }
 
 }  // namespace
@@ -73,6 +115,19 @@ int run_render(const RenderCommand& command) {
                                     *command.floor, file.string(), scene->floors.size() - 1));
         scenes.push_back(std::move(scene.value()));
     }
+    // The registry is read once, and only when some scene names a plugin: a scene without
+    // effects involves no policy. A malformed registry is bad input like a malformed scene.
+    std::shared_ptr<const Registry> registry;
+    std::string registry_name;  // how the policy's messages name it
+    if (std::any_of(scenes.begin(), scenes.end(), names_a_plugin)) {
+        const std::filesystem::path file = registry_path(command.registry);
+        auto loaded = Registry::load(file);  // a missing file: nothing is validated
+        if (!loaded) return fail(loaded.error());
+        registry = std::make_shared<const Registry>(std::move(loaded).value());
+        std::error_code ec;
+        registry_name = fmt::format("registry {}{}", file.string(),
+                                    std::filesystem::exists(file, ec) ? "" : " (no such file)");
+    }
 
     auto context = VulkanContext::create(ContextOptions::from_environment());
     if (!context) return fail(context.error());
@@ -82,6 +137,9 @@ int run_render(const RenderCommand& command) {
     if (command.pipeline_cache) renderer_options.pipeline_cache_file = default_pipeline_cache_path();
     auto renderer = Renderer::create(*context.value(), renderer_options);
     if (!renderer) return fail(renderer.error());
+    if (registry)
+        (*renderer)->plugins().set_admission(
+            load_policy(registry, registry_name, command.allow_unvalidated));
 
     nlohmann::json scene_reports = nlohmann::json::array();
     const bool several_scenes = scenes.size() > 1;

@@ -19,6 +19,10 @@ struct RenderCommand {
     std::vector<std::filesystem::path> plugin_paths;  // --plugin-path DIR (repeatable)
     float time = 0;                               // --time SECONDS: what effects animate with
     bool pipeline_cache = true;                   // --no-pipeline-cache turns the disk cache off
+    // Host load policy (docs/registry.md, "Host policy"): a plugin is loaded only if the
+    // registry has it VALIDATED for its exact binary.
+    std::optional<std::filesystem::path> registry;  // --registry FILE, else ACETATE_REGISTRY
+    bool allow_unvalidated = false;                 // --allow-unvalidated: load with a warning
 };
 
 // Runs the command; prints progress to stdout and one-line errors to stderr. Returns the exit

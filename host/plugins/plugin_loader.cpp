@@ -32,6 +32,13 @@ std::vector<std::filesystem::path> PluginLoader::default_directories(
 }
 
 Result<std::shared_ptr<LoadedPlugin>> PluginLoader::load_file(const std::filesystem::path& file) {
+    if (admission_)
+        if (auto admitted = admission_(std::string(), file); !admitted) return admitted.error();
+    return open_library(file);
+}
+
+Result<std::shared_ptr<LoadedPlugin>> PluginLoader::open_library(
+    const std::filesystem::path& file) {
     const std::string where = file.string();
     auto plugin = std::make_shared<LoadedPlugin>();
     plugin->file = file;
@@ -94,7 +101,10 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::load(const std::string& id) 
             looked += (looked.empty() ? "" : ", ") + file.string();
             std::error_code ec;
             if (!std::filesystem::is_regular_file(file, ec)) continue;
-            auto plugin = load_file(file);
+            // The first file found is the plugin: a refused one is not skipped for a later one.
+            if (admission_)
+                if (auto admitted = admission_(id, file); !admitted) return admitted.error();
+            auto plugin = open_library(file);
             if (!plugin) return plugin.error();
             if (plugin.value()->descriptor.id != id)
                 return make_error(ErrorCode::InvalidInput,

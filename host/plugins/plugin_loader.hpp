@@ -5,6 +5,7 @@
 #include <acetate/effect.h>
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -29,6 +30,14 @@ struct LoadedPlugin {
 
 class PluginLoader {
 public:
+    // Decides whether a plugin file may be loaded into this process: called once the file is
+    // found and before it is opened (dlopen runs the library's static constructors, so a
+    // refused file must never reach it). `id` is the id asked for by load(), or empty for
+    // load_file(), whose id is not known before loading (a policy then judges the file by its
+    // bytes alone). An error refuses the file and is returned by load() / load_file() as is.
+    using Admission =
+        std::function<Result<void>(const std::string& id, const std::filesystem::path& file)>;
+
     // Searches `directories` in order.
     explicit PluginLoader(std::vector<std::filesystem::path> directories);
 
@@ -43,16 +52,26 @@ public:
     // descriptor, an id other than the one asked for), or list where it looked.
     Result<std::shared_ptr<LoadedPlugin>> load(const std::string& id);
 
-    // Loads one file, whatever its id.
+    // Loads one file, whatever its id (the admission hook gets an empty id).
     Result<std::shared_ptr<LoadedPlugin>> load_file(const std::filesystem::path& file);
+
+    // Sets the hook every later load() and load_file() asks before opening a file. Without
+    // one (the default, for tests and tools) every file found is loaded; `acetate render`
+    // sets the registry's host policy (host/cli/render_command.cpp). An empty function
+    // removes the hook. load() asks once per id: a loaded plugin is kept and not asked again.
+    void set_admission(Admission admission) { admission_ = std::move(admission); }
 
     const std::vector<std::filesystem::path>& directories() const { return directories_; }
     // Plugins loaded so far by this loader, by id.
     size_t loaded_count() const { return by_id_.size(); }
 
 private:
+    // Opens `file` and reads its descriptor; no admission check.
+    Result<std::shared_ptr<LoadedPlugin>> open_library(const std::filesystem::path& file);
+
     std::vector<std::filesystem::path> directories_;
     std::map<std::string, std::shared_ptr<LoadedPlugin>> by_id_;
+    Admission admission_;
 };
 
 }  // namespace acetate

@@ -289,11 +289,17 @@ Result<void> Compositor::warm_pipelines() {
     };
     return context_.submit_and_wait([&](VkCommandBuffer cmd) {
         // Clearing every target whole makes the driver commit their memory now: on lavapipe
-        // the first touch of a fresh 1080p target otherwise costs the first frame ~20 ms.
+        // the first touch of a fresh 1080p target otherwise costs the first frame ~20 ms. It
+        // also means no target ever holds what the allocation happened to contain: an effect
+        // that reads a target it wrote only in part reads zeros, the same in every process.
         const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
         const VkImageSubresourceRange colour{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        for (GpuImage* target : {&accumulation_, &output_, floor_color_ ? &*floor_color_ : nullptr}) {
-            if (!target) continue;
+        std::vector<GpuImage*> targets = effect_targets_.images();
+        for (auto* optional : {&floor_color_, &floor_pingpong_, &accumulation_pingpong_})
+            if (optional->has_value()) targets.push_back(&optional->value());
+        targets.push_back(&accumulation_);
+        targets.push_back(&output_);
+        for (GpuImage* target : targets) {
             target->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
             vkCmdClearColorImage(cmd, target->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
                                  1, &colour);
@@ -475,7 +481,7 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
 
     // The floor's effects, in scene order, ping-ponging between the two floor targets.
     GpuImage* current = &color;
-    if (!effects.empty()) {
+    if (!effects.empty() && effects_enabled_) {
         GpuImage& other = *floor_pingpong_;
         other.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
@@ -528,7 +534,7 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
 
 void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, float time) {
     final_accumulation_ = &accumulation_;
-    if (global_effects_.empty()) return;
+    if (global_effects_.empty() || !global_effects_enabled_) return;
     GpuImage* current = &accumulation_;
     GpuImage* next = &*accumulation_pingpong_;
     // Like the floor ping-pong: "result" starts transparent every frame.
@@ -668,6 +674,14 @@ Result<FrameStats> Compositor::render(uint32_t active_floor, float time) {
 Result<ImageRGBA> Compositor::read_output() { return read_back_image(context_, output_); }
 Result<ImageRGBA> Compositor::read_accumulation() {
     return read_back_image(context_, final_accumulation_ ? *final_accumulation_ : accumulation_);
+}
+
+Result<ImageRGBA> Compositor::read_active_floor() {
+    if (!view_reads_floor_target(options_.view) || !viewed_floor_)
+        return make_error(ErrorCode::InvalidInput,
+                          "read_active_floor needs a view that reads the floor target "
+                          "(floor-rgb, floor-alpha or violations)");
+    return read_back_image(context_, *viewed_floor_);
 }
 
 std::vector<TargetInfo> Compositor::targets_held() const {

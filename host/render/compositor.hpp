@@ -71,10 +71,24 @@ public:
     Result<FrameStats> render(uint32_t active_floor, float time = 0.0f);
     // Changes the view for later frames (no allocation; see render()).
     void set_view(OutputView view) { options_.view = view; }
+    // Turns every effect off (or back on) for later frames: floors still go through their
+    // targets, so read_active_floor() and read_accumulation() then show what the effects
+    // would have been given (the validation harness's "input"). No allocation.
+    void set_effects_enabled(bool enabled) { set_effects_enabled(enabled, enabled); }
+    // The same, floor effects and global effects apart (the harness reads the composite the
+    // floor effects made before the global effects run on it).
+    void set_effects_enabled(bool floor_effects, bool global_effects) {
+        effects_enabled_ = floor_effects;
+        global_effects_enabled_ = global_effects;
+    }
 
     // Float readbacks for tests and file output (premultiplied, linear).
     Result<ImageRGBA> read_output();
     Result<ImageRGBA> read_accumulation();
+    // The active floor's own target after its effects, as the last frame left it. Whole only
+    // with a view that reads the floor target (set_view(OutputView::FloorRgb)), which makes
+    // the frame clear and draw the active floor's whole target; InvalidInput otherwise.
+    Result<ImageRGBA> read_active_floor();
 
     uint32_t floor_count() const { return uint32_t(resources_->floors().size()); }
     uint32_t width() const { return width_; }
@@ -128,6 +142,8 @@ private:
     std::vector<FloorGeometry> geometry_;  // what the planner works from (fixed at load)
     LoadStats load_stats_;
     FramePlan last_plan_;
+    bool effects_enabled_ = true;
+    bool global_effects_enabled_ = true;
 };
 
 }  // namespace acetate

@@ -42,6 +42,12 @@ std::vector<const GpuImage*> EffectTargets::images() const {
     return out;
 }
 
+std::vector<GpuImage*> EffectTargets::images() {
+    std::vector<GpuImage*> out;
+    for (const auto& [key, image] : images_) out.push_back(image.get());
+    return out;
+}
+
 Result<std::vector<float>> resolve_params(const EffectDescriptor& d, const EffectRef& ref,
                                           const std::string& scene_file) {
     std::vector<float> values;

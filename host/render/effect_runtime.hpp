@@ -53,6 +53,7 @@ public:
                           const GraphTarget& target, uint32_t canvas_width,
                           uint32_t canvas_height, VkFormat format);
     std::vector<const GpuImage*> images() const;
+    std::vector<GpuImage*> images();
 
 private:
     std::map<std::string, std::unique_ptr<GpuImage>> images_;

@@ -1,0 +1,124 @@
+#include "child_process.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+extern char** environ;
+
+namespace acetate::harness {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Running {
+    size_t index = 0;
+    pid_t pid = 0;
+    Clock::time_point start;
+};
+
+ChildOutcome spawn(const ChildJob& job, pid_t& pid) {
+    ChildOutcome outcome;
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, job.log.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    std::vector<char*> argv;
+    for (const std::string& arg : job.argv) argv.push_back(const_cast<char*>(arg.c_str()));
+    argv.push_back(nullptr);
+    const int error = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (error) {
+        outcome.message = fmt::format("cannot start {}: {}", job.argv[0], std::strerror(error));
+        return outcome;
+    }
+    outcome.started = true;
+    return outcome;
+}
+
+ChildOutcome finished(int status, double seconds) {
+    ChildOutcome outcome;
+    outcome.started = true;
+    outcome.seconds = seconds;
+    if (WIFEXITED(status)) {
+        outcome.exit_code = WEXITSTATUS(status);
+        outcome.message = fmt::format("exit {}", outcome.exit_code);
+    } else if (WIFSIGNALED(status)) {
+        outcome.signal = WTERMSIG(status);
+        const char* name = sigabbrev_np(outcome.signal);
+        outcome.message = fmt::format("killed by SIG{} ({})", name ? name : "?",
+                                      strsignal(outcome.signal));
+    }
+    return outcome;
+}
+
+}  // namespace
+
+void run_children(const std::vector<ChildJob>& jobs, unsigned parallel,
+                  const std::function<void(size_t, const ChildOutcome&)>& done) {
+    parallel = std::max(1u, parallel);
+    std::vector<Running> running;
+    size_t next = 0;
+    while (next < jobs.size() || !running.empty()) {
+        while (next < jobs.size() && running.size() < parallel) {
+            pid_t pid = 0;
+            ChildOutcome outcome = spawn(jobs[next], pid);
+            if (!outcome.started) done(next, outcome);
+            else running.push_back({next, pid, Clock::now()});
+            ++next;
+        }
+        bool reaped = false;
+        for (size_t i = 0; i < running.size();) {
+            Running& r = running[i];
+            const double seconds =
+                std::chrono::duration<double>(Clock::now() - r.start).count();
+            int status = 0;
+            if (waitpid(r.pid, &status, WNOHANG) == r.pid) {
+                const size_t index = r.index;
+                running.erase(running.begin() + i);
+                done(index, finished(status, seconds));
+                reaped = true;
+                continue;
+            }
+            if (Clock::now() - r.start > jobs[r.index].timeout) {
+                kill(r.pid, SIGKILL);
+                waitpid(r.pid, &status, 0);
+                ChildOutcome outcome;
+                outcome.started = true;
+                outcome.timed_out = true;
+                outcome.seconds = seconds;
+                outcome.message = fmt::format(
+                    "no result after {:.0f} s: killed",
+                    std::chrono::duration<double>(jobs[r.index].timeout).count());
+                const size_t index = r.index;
+                running.erase(running.begin() + i);
+                done(index, outcome);
+                reaped = true;
+                continue;
+            }
+            ++i;
+        }
+        if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+}
+
+std::string tail_of_file(const std::filesystem::path& file, size_t max_bytes) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return {};
+    std::ostringstream all;
+    all << in.rdbuf();
+    std::string text = all.str();
+    if (text.size() > max_bytes) text = "..." + text.substr(text.size() - max_bytes);
+    return text;
+}
+
+}  // namespace acetate::harness

@@ -1,0 +1,178 @@
+#include "synthetic_inputs.hpp"
+
+#include <Imath/half.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace acetate::harness {
+namespace {
+
+using nlohmann::json;
+constexpr double kTau = 6.283185307179586;
+
+// A smooth straight-alpha colour in [0.1, 0.9], different per floor and seed.
+std::array<float, 3> colour_at(double u, double v, const std::array<double, 3>& phase) {
+    return {float(0.5 + 0.4 * std::sin(kTau * (u + phase[0]))),
+            float(0.5 + 0.4 * std::sin(kTau * (v + phase[1]))),
+            float(0.5 + 0.4 * std::sin(kTau * (u + v + phase[2])))};
+}
+
+void put(ImageRGBA& image, uint32_t x, uint32_t y, const std::array<float, 3>& straight, float a) {
+    float* p = image.at(x, y);
+    for (int c = 0; c < 3; ++c) p[c] = straight[c] * a;
+    p[3] = a;
+}
+
+// Opaque on the left third, alpha = v in the middle (down to nearly 0 at the top), a checker
+// of 0.5 and 0 on the right: every kind of coverage a floor can have, in one tile.
+void standard(ImageRGBA& image, const std::array<double, 3>& phase, bool opaque) {
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const double u = (x + 0.5) / image.width, v = (y + 0.5) / image.height;
+            float a = 1.0f;
+            if (!opaque && u >= 2.0 / 3.0) a = ((x / 8 + y / 8) % 2) ? 0.5f : 0.0f;
+            else if (!opaque && u >= 1.0 / 3.0) a = float(v);
+            put(image, x, y, colour_at(u, v, phase), a);
+        }
+}
+
+// Alpha 2^(-16 u): 1 at the left edge down to 1/65535 at the right.
+void alpha_ramp(ImageRGBA& image, const std::array<double, 3>& phase) {
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const double u = image.width > 1 ? double(x) / (image.width - 1) : 1.0;
+            const float a = std::max(float(std::exp2(-16.0 * u)), 1.0f / 65535.0f);
+            put(image, x, y, colour_at(u, (y + 0.5) / image.height, phase), a);
+        }
+}
+
+// 8x8 blocks of premultiplied values from 1 up to 65504 (the half-float maximum); every third
+// block half transparent, every fifth transparent.
+void hdr(ImageRGBA& image) {
+    constexpr float levels[] = {1.0f, 100.0f, 1000.0f, 16384.0f, 32768.0f, 60000.0f, 65504.0f};
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const uint32_t block = x / 8 + 3 * (y / 8);
+            const float level = levels[block % 7];
+            const float a = block % 5 == 4 ? 0.0f : block % 3 == 2 ? 0.5f : 1.0f;
+            float* p = image.at(x, y);
+            const float rgb[3] = {level, level * 0.5f, level * 0.25f};
+            for (int c = 0; c < 3; ++c) p[c] = a == 0 ? 0.0f : rgb[c] * std::min(1.0f, a * 2);
+            p[3] = a;
+        }
+}
+
+std::array<uint32_t, 4> floor_rect(uint32_t w, uint32_t h, uint32_t floor) {
+    if (floor == 0) return {0, 0, w, h};
+    auto part = [](uint32_t size, double f) { return uint32_t(std::floor(size * f)); };
+    if (floor % 2 == 1) {  // upper right
+        const uint32_t x0 = std::min(part(w, 0.3), w - 1);
+        return {x0, 0, w - x0, std::max(1u, part(h, 0.7))};
+    }
+    const uint32_t y0 = std::min(part(h, 0.35), h - 1);  // lower left
+    return {0, y0, std::max(1u, part(w, 0.6)), h - y0};
+}
+
+}  // namespace
+
+void round_to_half(ImageRGBA& image) {
+    for (float& v : image.pixels) v = float(Imath::half(v));
+}
+
+FloorInput make_floor_input(Pattern pattern, uint32_t canvas_width, uint32_t canvas_height,
+                            uint32_t floor, uint32_t floors, uint64_t seed,
+                            const std::vector<std::string>& mask_kinds) {
+    std::mt19937_64 rng(seed + 7919 * floor);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    FloorInput in;
+    const auto rect = floor_rect(canvas_width, canvas_height, floors == 1 ? 0 : floor);
+    in.x = rect[0];
+    in.y = rect[1];
+    in.width = rect[2];
+    in.height = rect[3];
+    in.image = ImageRGBA(in.width, in.height);
+    const std::array<double, 3> phase{unit(rng), unit(rng), unit(rng)};
+    switch (pattern) {
+        case Pattern::Standard: standard(in.image, phase, false); break;
+        case Pattern::Opaque: standard(in.image, phase, true); break;
+        case Pattern::AlphaRamp: alpha_ramp(in.image, phase); break;
+        case Pattern::Hdr: hdr(in.image); break;
+        case Pattern::Empty: break;  // all zero
+    }
+    round_to_half(in.image);
+
+    // Masks vary across the tile so that a mask-driven parameter has something to act on.
+    for (const std::string& kind : mask_kinds) {
+        ImageRGBA mask(in.width, in.height);
+        const double offset = unit(rng) * kTau;
+        for (uint32_t y = 0; y < in.height; ++y)
+            for (uint32_t x = 0; x < in.width; ++x) {
+                const float m = float(0.5 + 0.5 * std::sin(0.21 * x + 0.13 * y + offset));
+                std::fill_n(mask.at(x, y), 4, m);
+            }
+        round_to_half(mask);
+        in.masks[kind] = std::move(mask);
+    }
+    // Three lights somewhere over the canvas, large enough to reach most of it.
+    const double reach = std::max(canvas_width, canvas_height);
+    for (int i = 0; i < 3; ++i) {
+        LightDesc light;
+        light.pos = {float(unit(rng) * canvas_width), float(unit(rng) * canvas_height)};
+        light.radius = float(1.0 + reach * (0.3 + 0.4 * unit(rng)));
+        light.color = {float(0.5 + 0.5 * unit(rng)), float(0.5 + 0.5 * unit(rng)),
+                       float(0.5 + 0.5 * unit(rng))};
+        light.intensity = float(0.5 + 1.5 * unit(rng));
+        in.lights.push_back(light);
+    }
+    return in;
+}
+
+Result<SceneDesc> write_scene(const SceneLayout& layout, const std::filesystem::path& directory,
+                              const std::string& name) {
+    auto effects_json = [](const std::vector<SceneEffect>& effects) {
+        json out = json::array();
+        for (const SceneEffect& e : effects) {
+            json effect = {{"plugin", e.plugin}, {"params", e.params}};
+            if (!e.preset.empty()) effect["preset"] = e.preset;
+            out.push_back(effect);
+        }
+        return out;
+    };
+    json floors = json::array();
+    for (size_t f = 0; f < layout.floors.size(); ++f) {
+        const FloorInput& in = layout.floors[f];
+        const auto image = directory / fmt::format("{}.floor{}.exr", name, f);
+        ACETATE_TRY(save_image(image, in.image));
+        json tile = {{"image", image.string()}, {"rect", {in.x, in.y, in.width, in.height}}};
+        if (!in.masks.empty()) {
+            json masks = json::object();
+            for (const auto& [kind, mask] : in.masks) {
+                const auto file = directory / fmt::format("{}.floor{}.{}.exr", name, f, kind);
+                ACETATE_TRY(save_image(file, mask));
+                masks[kind] = file.string();
+            }
+            tile["masks"] = masks;
+        }
+        json lights = json::array();
+        for (const LightDesc& l : in.lights)
+            lights.push_back({{"pos", l.pos}, {"radius", l.radius}, {"color", l.color},
+                              {"intensity", l.intensity}});
+        json floor = {{"name", fmt::format("floor{}", f)}, {"tiles", {tile}}, {"lights", lights}};
+        if (f < layout.floor_effects.size() && !layout.floor_effects[f].empty())
+            floor["effects"] = effects_json(layout.floor_effects[f]);
+        floors.push_back(floor);
+    }
+    json scene = {{"format", "acetate-scene/1"},
+                  {"canvas", {{"width", layout.width}, {"height", layout.height},
+                              {"background", {0.0, 0.0, 0.0, 0.0}}}},
+                  {"floors", floors}};
+    if (!layout.global_effects.empty())
+        scene["global_effects"] = effects_json(layout.global_effects);
+    const auto file = directory / (name + ".json");
+    return parse_scene_text(scene.dump(2), file);
+}
+
+}  // namespace acetate::harness

@@ -1,0 +1,519 @@
+#include "validate.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "case_runner.hpp"
+#include "child_process.hpp"
+#include "contract_checks.hpp"
+#include "core/atomic_file.hpp"
+#include "plugins/plugin_loader.hpp"
+#include "registry_location.hpp"
+#include "report.hpp"
+
+namespace acetate::harness {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+std::string slug(const std::string& id) {
+    std::string out = id;
+    for (char& c : out)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '_';
+    return out;
+}
+
+Result<json> read_json(const fs::path& file) {
+    std::ifstream in(file);
+    if (!in) return make_error(ErrorCode::Io, fmt::format("{}: cannot open", file.string()));
+    try {
+        return json::parse(in);
+    } catch (const json::exception& e) {
+        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}", file.string(), e.what()));
+    }
+}
+
+// The last non-empty line of a child's log: its one-line error, when it wrote one.
+std::string last_line(const std::string& text) {
+    std::istringstream in(text);
+    std::string line, last;
+    while (std::getline(in, line))
+        if (!line.empty()) last = line;
+    return last;
+}
+
+// ---- running the cases --------------------------------------------------------------------
+
+struct RunContext {
+    const ValidateOptions& options;
+    const PluginInfo& plugin;
+    fs::path plugin_info_file;
+    size_t done = 0, total = 0;
+};
+
+std::string reproduce_command(const ValidateOptions& o, const std::string& case_id) {
+    return fmt::format("acetate-harness validate {} --strictness {} --seed {} --case {}",
+                       o.plugin.string(), o.strictness, o.seed, case_id);
+}
+
+// Runs `cases`, each in a child; prints a progress line as each finishes.
+std::vector<CaseResult> run_cases(RunContext& run, const std::vector<CaseSpec>& cases) {
+    const ValidateOptions& o = run.options;
+    std::vector<ChildJob> jobs;
+    std::vector<fs::path> directories;
+    for (const CaseSpec& spec : cases) {
+        const fs::path dir = o.report_directory / "cases" / slug(spec.id);
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+        fs::create_directories(dir, ec);
+        const fs::path spec_file = dir / "case.json";
+        (void)write_file_atomically(spec_file, to_json(spec).dump(2));
+        ChildJob job;
+        job.argv = {o.self.string(), "run-case", "--plugin-info", run.plugin_info_file.string(),
+                    "--case", spec_file.string(), "--out", dir.string(),
+                    "--report", o.report_directory.string()};
+        job.log = dir / "log.txt";
+        job.timeout = std::chrono::milliseconds(int64_t(o.timeout_seconds * 1000));
+        jobs.push_back(job);
+        directories.push_back(dir);
+    }
+    std::vector<CaseResult> results(cases.size());
+    run_children(jobs, o.jobs, [&](size_t i, const ChildOutcome& outcome) {
+        CaseResult result;
+        const std::string log = tail_of_file(jobs[i].log, 4000);
+        if (outcome.started && !outcome.timed_out && outcome.exit_code == 0) {
+            auto parsed = read_json(case_result_file(directories[i]));
+            auto read = parsed ? case_result_from_json(*parsed, "result.json")
+                               : Result<CaseResult>(parsed.error());
+            if (read) result = std::move(read.value());
+            else {
+                result.verdict = Verdict::Crash;
+                result.message = "the child wrote no readable result: " + read.error().message;
+            }
+        } else if (outcome.timed_out) {
+            result.verdict = Verdict::Timeout;
+            result.message = outcome.message;
+        } else if (outcome.signal) {
+            result.verdict = Verdict::Crash;
+            result.message = outcome.message;
+        } else {
+            // The child ran but could not run the case (no device, an unwritable folder): the
+            // case failed, and its last log line says why.
+            result.verdict = Verdict::Fail;
+            result.message = fmt::format("{}: {}", outcome.message, last_line(log));
+        }
+        result.id = cases[i].id;
+        result.description = cases[i].description;
+        result.seed = cases[i].seed;
+        result.seconds = outcome.seconds;
+        result.reproduce = reproduce_command(o, cases[i].id);
+        result.log = log;
+        ++run.done;
+        std::printf("[%zu/%zu] %-28s %-7s %5.1f s%s%s\n", run.done, run.total,
+                    result.id.c_str(), to_string(result.verdict), result.seconds,
+                    result.message.empty() ? "" : "  ", result.message.c_str());
+        std::fflush(stdout);
+        results[i] = std::move(result);
+    });
+    return results;
+}
+
+CheckResult* find_check(CaseResult& c, const std::string& name) {
+    for (CheckResult& check : c.checks)
+        if (check.check == name) return &check;
+    return nullptr;
+}
+
+// The determinism runs compare across processes: their digests must match. A plugin that is
+// not deterministic cannot be judged for state isolation (its images differ anyway), so that
+// check is skipped rather than failed twice for one fault.
+void compare_across_processes(std::vector<CaseResult>& results, const fs::path& report_dir) {
+    CaseResult *run1 = nullptr, *run2 = nullptr;
+    for (CaseResult& r : results) {
+        if (r.id == "determinism/run-1") run1 = &r;
+        if (r.id == "determinism/run-2") run2 = &r;
+    }
+    bool deterministic = true;
+    if (run1 && run2 && !run1->output_digest.empty() && !run2->output_digest.empty()) {
+        CheckResult* check = find_check(*run2, "determinism");
+        if (check && run1->output_digest != run2->output_digest) {
+            check->verdict = Verdict::Fail;
+            check->message = fmt::format(
+                "two processes rendered the same case differently (digests {} and {})",
+                run1->output_digest.substr(0, 12), run2->output_digest.substr(0, 12));
+            // Where: the first floor whose saved outputs differ.
+            for (int f = 0; f < 8; ++f) {
+                const auto name = fmt::format("output.floor{}.exr", f);
+                auto a = load_image(report_dir / "cases" / slug(run1->id) / name, ImageRole::Colour);
+                auto b = load_image(report_dir / "cases" / slug(run2->id) / name, ImageRole::Colour);
+                if (!a || !b) break;
+                const ImageDifference diff = compare_exact(*a, *b, f);
+                if (diff.pixels == 0) continue;
+                check->violations = diff.pixels;
+                check->examples = diff.examples;
+                check->message += fmt::format("; floor {}: {} pixels differ, first at ({}, {})", f,
+                                              diff.pixels, diff.examples[0].x, diff.examples[0].y);
+                break;
+            }
+            run2->verdict = std::max(run2->verdict, Verdict::Fail);
+        }
+    }
+    for (const CaseResult& r : results)
+        for (const CheckResult& c : r.checks)
+            if (c.check == "determinism" && c.verdict == Verdict::Fail) deterministic = false;
+    if (deterministic) return;
+    for (CaseResult& r : results) {
+        CheckResult* state = find_check(r, "state-isolation");
+        if (!state || state->verdict == Verdict::Pass) continue;
+        state->verdict = Verdict::Skip;
+        state->message = "not judged: the plugin is not deterministic (see determinism), so its "
+                         "images differ between renders anyway";
+        state->examples.clear();
+        state->violations = 0;
+        r.verdict = Verdict::Pass;
+        for (const CheckResult& c : r.checks) r.verdict = std::max(r.verdict, c.verdict);
+    }
+}
+
+bool all_pass(const std::vector<CaseResult>& results) {
+    for (const CaseResult& r : results) {
+        if (is_failing(r.verdict)) return false;
+        for (const CheckResult& c : r.checks)
+            if (is_failing(c.verdict)) return false;
+    }
+    return true;
+}
+
+std::map<std::string, uint64_t> verdict_counts(const std::vector<CaseResult>& results) {
+    std::map<std::string, uint64_t> counts;
+    for (const CaseResult& r : results) ++counts[to_string(r.verdict)];
+    return counts;
+}
+
+// Integrated or validated plugins other than this one, found on the plugin search path with
+// the binary the registry recorded for them.
+std::vector<CompanionPlugin> find_companions(const Registry& registry, const PluginInfo& plugin,
+                                             const std::vector<fs::path>& extra_paths,
+                                             std::vector<std::string>& notes) {
+    std::vector<CompanionPlugin> out;
+    const auto directories = PluginLoader::default_directories(extra_paths);
+    for (const RegistryEntry& e : registry.entries()) {
+        if (e.id == plugin.id || e.stage() < ValidationStage::Integrated) continue;
+        const std::string last = e.id.substr(e.id.rfind('.') + 1);
+        bool found = false;
+        for (const fs::path& dir : directories) {
+            for (const fs::path& file : {dir / (e.id + ".so"), dir / (last + ".so")}) {
+                std::error_code ec;
+                if (found || !fs::is_regular_file(file, ec)) continue;
+                auto sha = file_sha256(file);
+                if (!sha || sha.value() != e.binary_sha256) continue;
+                auto info = describe_plugin(file);  // integrated: trusted to load in-process
+                if (!info) continue;
+                out.push_back({e.id, fs::absolute(file).string(), info->scope});
+                found = true;
+            }
+        }
+        if (!found)
+            notes.push_back(fmt::format("{} {} is {} but its recorded binary was not found on "
+                                        "the plugin search path; left out",
+                                        e.id, e.version, to_string(e.stage())));
+    }
+    return out;
+}
+
+Result<void> record(const ValidateOptions& o, const PluginInfo& plugin, ValidationStage stage,
+                    const std::vector<CaseResult>& results, const std::string& report) {
+    StageEvidence evidence;
+    evidence.harness_version = kHarnessVersion;
+    evidence.counts = verdict_counts(results);
+    evidence.report = report;
+    evidence.summary = fmt::format("{} cases at strictness {}, seed {}: all passed",
+                                   results.size(), o.strictness, o.seed);
+    return Registry::update(
+        o.registry,
+        [&](Registry& r) {
+            return r.record_evidence(plugin.id, plugin.version, plugin.binary_sha256,
+                                     plugin.source_digest, stage, evidence);
+        },
+        registry_markdown_path(o.registry));
+}
+
+Result<std::vector<std::string>> import_committed(const ValidateOptions& o,
+                                                  const PluginInfo& plugin) {
+    if (!o.signoffs) return std::vector<std::string>{};
+    auto signoffs = Registry::load(*o.signoffs);
+    if (!signoffs) return signoffs.error();
+    std::vector<std::string> imported;
+    ACETATE_TRY(Registry::update(
+        o.registry,
+        [&](Registry& r) -> Result<void> {
+            imported = import_signoffs(r, signoffs.value(), plugin);
+            return {};
+        },
+        registry_markdown_path(o.registry)));
+    return imported;
+}
+
+void print_summary(const ValidationReport& report) {
+    std::printf("\n%-26s %-8s %s\n", "check", "verdict", "cases");
+    for (const CheckSummary& s : summarize_checks(report)) {
+        std::string counts;
+        for (const auto& [verdict, n] : s.cases)
+            counts += fmt::format("{}{} {}", counts.empty() ? "" : ", ", n, to_string(verdict));
+        std::printf("%-26s %-8s %s\n", s.check.c_str(), to_string(s.verdict), counts.c_str());
+        if (!s.first_failure.empty() && s.verdict != Verdict::Pass)
+            std::printf("    %s\n", s.first_failure.c_str());
+    }
+}
+
+std::vector<HistoryLine> history_of(const fs::path& registry_file, const PluginInfo& plugin) {
+    std::vector<HistoryLine> lines;
+    auto registry = Registry::load(registry_file);
+    if (!registry) return lines;
+    const RegistryEntry* e = registry->find(plugin.id, plugin.version);
+    if (!e) return lines;
+    if (e->review) lines.push_back({e->review->at, "review (REVIEWED)", e->review->by, e->review->notes});
+    if (e->alpha_tested)
+        lines.push_back({e->alpha_tested->at, "ALPHA_TESTED evidence", e->alpha_tested->harness_version,
+                         e->alpha_tested->summary});
+    if (e->integrated)
+        lines.push_back({e->integrated->at, "INTEGRATED evidence", e->integrated->harness_version,
+                         e->integrated->summary});
+    if (e->promotion)
+        lines.push_back({e->promotion->at, "promotion (VALIDATED)", e->promotion->by,
+                         e->promotion->notes});
+    return lines;
+}
+
+ValidationStage current_stage(const fs::path& registry_file, const PluginInfo& p) {
+    auto registry = Registry::load(registry_file);
+    if (!registry) return ValidationStage::Unvalidated;
+    return registry->effective_stage(p.id, p.version, p.binary_sha256, p.source_digest);
+}
+
+}  // namespace
+
+Result<PluginInfo> describe_plugin(const fs::path& file) {
+    PluginLoader loader({});
+    auto loaded = loader.load_file(file);
+    if (!loaded) return loaded.error();
+    const EffectDescriptor& d = loaded.value()->descriptor;
+    PluginInfo info;
+    info.file = fs::absolute(file).string();
+    info.id = d.id;
+    info.version = d.version_string();
+    info.display_name = d.display_name;
+    info.scope = d.scope == ACETATE_SCOPE_GLOBAL ? "global" : "floor";
+    info.coverage = d.coverage == ACETATE_COVERAGE_EXPANDING ? "expanding" : "preserving";
+    info.masks = d.masks;
+    for (const EffectParam& p : d.params)
+        info.params.push_back({p.name,
+                               p.type == ACETATE_PARAM_INT    ? "int"
+                               : p.type == ACETATE_PARAM_BOOL ? "bool"
+                                                              : "float",
+                               p.default_value, p.min_value, p.max_value});
+    for (const auto& [name, values] : d.presets) info.presets.push_back(name);
+    info.source_digest = d.source_digest;
+    auto sha = file_sha256(file);
+    if (!sha) return sha.error();
+    info.binary_sha256 = sha.value();
+    return info;
+}
+
+Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugin,
+                                     const fs::path& work_directory, double timeout_seconds) {
+    std::error_code ec;
+    fs::create_directories(work_directory, ec);
+    const fs::path out = work_directory / "plugin.json";
+    fs::remove(out, ec);
+    ChildJob job;
+    job.argv = {self.string(), "describe", plugin.string(), "--out", out.string()};
+    job.log = work_directory / "describe.log";
+    job.timeout = std::chrono::milliseconds(int64_t(timeout_seconds * 1000));
+    ChildOutcome outcome;
+    run_children({job}, 1, [&](size_t, const ChildOutcome& o) { outcome = o; });
+    if (!outcome.started || outcome.timed_out || outcome.signal || outcome.exit_code != 0) {
+        const std::string why = outcome.exit_code > 0
+                                    ? last_line(tail_of_file(job.log, 2000))
+                                    : fmt::format("{} while loading it ({})",
+                                                  outcome.timed_out ? "it hung" : "it crashed",
+                                                  outcome.message);
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: cannot describe the plugin: {}", plugin.string(), why));
+    }
+    auto parsed = read_json(out);
+    if (!parsed) return parsed.error();
+    return plugin_info_from_json(*parsed, out.string());
+}
+
+std::vector<std::string> import_signoffs(Registry& registry, const Registry& signoffs,
+                                         const PluginInfo& p) {
+    std::vector<std::string> imported;
+    const RegistryEntry* committed = signoffs.find(p.id, p.version);
+    if (!committed) return imported;
+    const ValidationStage stage =
+        registry.effective_stage(p.id, p.version, p.binary_sha256, p.source_digest);
+    auto at = [&](const SignOff& s) { registry.set_clock([t = s.at] { return t; }); };
+    if (committed->review && committed->review->source_digest == p.source_digest &&
+        stage == ValidationStage::Unvalidated) {
+        at(*committed->review);
+        if (registry.record_review(p.id, p.version, p.binary_sha256, p.source_digest,
+                                   committed->review->by, committed->review->notes))
+            imported.push_back(fmt::format("review by {} ({})", committed->review->by,
+                                           committed->review->at));
+    }
+    if (committed->promotion && committed->promotion->source_digest == p.source_digest &&
+        registry.effective_stage(p.id, p.version, p.binary_sha256, p.source_digest) ==
+            ValidationStage::Integrated) {
+        at(*committed->promotion);
+        if (registry.promote(p.id, p.version, committed->promotion->by, committed->promotion->notes))
+            imported.push_back(fmt::format("promotion by {} ({})", committed->promotion->by,
+                                           committed->promotion->at));
+    }
+    registry.set_clock(utc_now_iso8601);
+    return imported;
+}
+
+int run_validate(const ValidateOptions& o) {
+    const auto start = Clock::now();
+    ValidationReport report;
+    report.harness_version = kHarnessVersion;
+    report.plugin_file = o.plugin.string();
+    report.strictness = o.strictness;
+    report.seed = o.seed;
+    report.started_at = utc_now_iso8601();
+    std::error_code ec;
+    fs::create_directories(o.report_directory, ec);
+    const fs::path html = o.report_directory / "index.html";
+    auto finish = [&](int status) {
+        report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        auto written = write_json_report(report, o.report_directory / "report.json");
+        if (written && o.json_file) written = write_json_report(report, *o.json_file);
+        if (written) written = write_html_report(report, o.report_directory);
+        if (!written) {
+            std::fprintf(stderr, "acetate-harness: %s\n", written.error().message.c_str());
+            return 1;
+        }
+        std::printf("report: %s\n", fs::absolute(html).string().c_str());
+        return status;
+    };
+    auto fail_run = [&](const std::string& message) {
+        std::fprintf(stderr, "acetate-harness: %s\n", message.c_str());
+        report.error = message;
+        return finish(1);
+    };
+
+    auto described = describe_in_child(o.self, o.plugin, o.report_directory, o.timeout_seconds);
+    if (!described) return fail_run(described.error().message);
+    const PluginInfo plugin = std::move(described.value());
+    report.id = plugin.id;
+    report.version = plugin.version;
+    report.display_name = plugin.display_name;
+    report.scope = plugin.scope;
+    report.coverage = plugin.coverage;
+    report.binary_sha256 = plugin.binary_sha256;
+    report.source_digest = plugin.source_digest;
+    const fs::path plugin_info_file = o.report_directory / "plugin.json";
+    if (auto w = write_file_atomically(plugin_info_file, to_json(plugin).dump(2)); !w)
+        return fail_run(w.error().message);
+
+    const bool partial = !o.only_cases.empty();
+    if (!partial) {
+        auto imported = import_committed(o, plugin);
+        if (!imported) return fail_run(imported.error().message);
+        for (const std::string& line : imported.value())
+            std::printf("imported the committed %s from %s\n", line.c_str(),
+                        o.signoffs->string().c_str());
+    }
+    const ValidationStage before = current_stage(o.registry, plugin);
+    report.stage_before = to_string(before);
+    std::printf("validating %s %s (%s, %s, %s) from %s\nregistry %s: %s; strictness %d, seed "
+                "%llu, %u jobs\n",
+                plugin.id.c_str(), plugin.version.c_str(), plugin.display_name.c_str(),
+                plugin.scope.c_str(), plugin.coverage.c_str(), o.plugin.string().c_str(),
+                o.registry.string().c_str(), to_string(before), o.strictness,
+                (unsigned long long)o.seed, o.jobs);
+
+    auto select = [&](std::vector<CaseSpec> cases) {
+        if (!partial) return cases;
+        std::erase_if(cases, [&](const CaseSpec& c) {
+            return std::find(o.only_cases.begin(), o.only_cases.end(), c.id) == o.only_cases.end();
+        });
+        return cases;
+    };
+    RunContext run{o, plugin, plugin_info_file};
+    // Which stages may be recorded: each needs the one before it, for this binary and source.
+    auto try_stage = [&](ValidationStage stage, const std::vector<CaseSpec>& cases) {
+        StageRun stage_run;
+        stage_run.stage = to_string(stage);
+        run.total += cases.size();
+        std::vector<CaseResult> results = run_cases(run, cases);
+        compare_across_processes(results, o.report_directory);
+        stage_run.passed = all_pass(results);
+        const ValidationStage now = current_stage(o.registry, plugin);
+        if (!stage_run.passed) {
+            stage_run.note = "a check failed: nothing recorded";
+        } else if (partial) {
+            stage_run.note = "only some cases ran (--case): nothing recorded";
+        } else if (int(now) < int(stage) - 1) {
+            stage_run.note = fmt::format(
+                "passed, but not recorded: the plugin is {} and {} needs {} first{}", to_string(now),
+                to_string(stage), to_string(ValidationStage(int(stage) - 1)),
+                now == ValidationStage::Unvalidated
+                    ? fmt::format(" (acetate-harness review {} --reviewer NAME --notes TEXT)",
+                                  o.plugin.string())
+                    : "");
+        } else if (auto r = record(o, plugin, stage, results,
+                                   fs::absolute(o.report_directory / "report.json").string());
+                   !r) {
+            stage_run.note = "passed, but recording failed: " + r.error().message;
+            stage_run.passed = false;
+        } else {
+            stage_run.recorded = true;
+            stage_run.note = fmt::format("recorded in {}", o.registry.string());
+        }
+        report.cases.insert(report.cases.end(), results.begin(), results.end());
+        report.stages.push_back(stage_run);
+        return stage_run.passed;
+    };
+
+    const auto alpha_cases = select(plan_cases(plugin, o.strictness, o.seed, true, false, {}));
+    bool passed = alpha_cases.empty() || try_stage(ValidationStage::AlphaTested, alpha_cases);
+    if (passed && o.up_to >= ValidationStage::Integrated) {
+        std::vector<std::string> notes;
+        auto registry = Registry::load(o.registry);
+        std::vector<CompanionPlugin> companions;
+        if (registry) companions = find_companions(*registry, plugin, o.plugin_paths, notes);
+        for (const std::string& note : notes) std::printf("note: %s\n", note.c_str());
+        std::printf("integration: with %zu other integrated plugin%s%s\n", companions.size(),
+                    companions.size() == 1 ? "" : "s", companions.empty() ? " (none yet)" : "");
+        const auto cases = select(plan_cases(plugin, o.strictness, o.seed, false, true, companions));
+        if (!cases.empty()) passed = try_stage(ValidationStage::Integrated, cases) && passed;
+        if (passed && !partial) {
+            auto imported = import_committed(o, plugin);
+            if (!imported) return fail_run(imported.error().message);
+            for (const std::string& line : imported.value())
+                std::printf("imported the committed %s from %s\n", line.c_str(),
+                            o.signoffs->string().c_str());
+        }
+    }
+    report.stage_after = to_string(current_stage(o.registry, plugin));
+    report.history = history_of(o.registry, plugin);
+    print_summary(report);
+    std::printf("\n%s %s: %s -> %s; %s\n", plugin.id.c_str(), plugin.version.c_str(),
+                report.stage_before.c_str(), report.stage_after.c_str(),
+                run_failed(report) ? "FAILED" : "all checks passed");
+    for (const StageRun& s : report.stages)
+        std::printf("  %s: %s\n", s.stage.c_str(), s.note.c_str());
+    return finish(run_failed(report) ? 1 : 0);
+}
+
+}  // namespace acetate::harness

@@ -1,0 +1,52 @@
+#pragma once
+// `acetate-harness validate`: describe the plugin in a child, run the alpha stage's cases (and,
+// when they pass, the integration stage's) each in its own child, compare across children
+// (determinism), record evidence in the registry, write the reports. docs/harness.md.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "case_spec.hpp"
+#include "core/result.hpp"
+#include "registry.hpp"
+
+namespace acetate::harness {
+
+inline constexpr const char* kHarnessVersion = "acetate-harness 0.1.0";
+
+struct ValidateOptions {
+    std::filesystem::path plugin;
+    ValidationStage up_to = ValidationStage::Integrated;  // --stage
+    int strictness = 5;
+    uint64_t seed = 1;
+    std::filesystem::path report_directory;         // --report; default ./harness-report/<stem>
+    std::optional<std::filesystem::path> json_file;  // --json
+    unsigned jobs = 2;
+    double timeout_seconds = 120;
+    std::vector<std::string> only_cases;  // --case: run just these (no evidence is recorded)
+    std::filesystem::path registry;
+    std::optional<std::filesystem::path> signoffs;  // committed sign-offs to import
+    std::vector<std::filesystem::path> plugin_paths;  // where integrated companions are found
+    std::filesystem::path self;  // this executable, for the children
+};
+
+// Returns the exit status: 0 when no check failed, 1 when one did or the run could not start.
+int run_validate(const ValidateOptions& options);
+
+// What the plugin declares, read in this process (the `describe` child does this).
+Result<PluginInfo> describe_plugin(const std::filesystem::path& file);
+// The same in a child process, so a crashing entry point is a clean error here.
+Result<PluginInfo> describe_in_child(const std::filesystem::path& self,
+                                     const std::filesystem::path& plugin,
+                                     const std::filesystem::path& work_directory,
+                                     double timeout_seconds);
+
+// Copies into `registry` the sign-offs `signoffs` holds for this plugin's id, version and
+// source digest that the registry lacks: a review always, a promotion only once the plugin is
+// INTEGRATED (a promotion cannot skip stages). Returns what was imported, for the log.
+std::vector<std::string> import_signoffs(Registry& registry, const Registry& signoffs,
+                                         const PluginInfo& plugin);
+
+}  // namespace acetate::harness
