@@ -411,6 +411,9 @@ int run_validate(const ValidateOptions& o) {
         return finish(1);
     };
 
+    // Every child runs with the Khronos validation layer unless the caller chose otherwise:
+    // a validation message while the plugin runs fails the vulkan-validation check.
+    setenv("ACETATE_VALIDATION", "1", 0);
     auto described = describe_in_child(o.self, o.plugin, o.report_directory, o.timeout_seconds);
     if (!described) return fail_run(described.error().message);
     const PluginInfo plugin = std::move(described.value());

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# The main job: set everything up, render the bundled harbour scene for each active floor,
-# write the images and the debug views to an output folder, and say where they are.
+# The main job: set everything up, validate the shipped plugins with acetate-harness (so the
+# registry has them VALIDATED for exactly these binaries), render the bundled harbour scene
+# for each active floor with validated plugins only, write the images and the debug views to
+# an output folder, and say where the images and the validation reports are.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${ACETATE_BUILD_DIR:-$root/build}
@@ -9,6 +11,16 @@ scene=$root/examples/harbour/scene.json
 bash "$root/scripts/setup.sh"
 
 mkdir -p "$out"
+# The committed sign-offs (validation/signoffs.json) are imported by validate; the automated
+# stages re-run on the binaries just built, which then reach VALIDATED in the build tree's
+# registry ($build/validation/registry.json), the one `acetate render` reads.
+for plugin in lighting bloom; do
+  echo "== Validating $plugin (acetate-harness, every case in its own process)"
+  ACETATE_VALIDATION=1 "$build/harness/acetate-harness" validate "$build/plugins/$plugin.so" \
+    --report "$out/validation/$plugin"
+done
+"$build/harness/acetate-harness" status
+
 floors=$(python3 -c "import json,sys; print(','.join(str(i) for i in range(len(json.load(open(sys.argv[1]))['floors']))))" "$scene")
 echo "== Rendering $scene, floors $floors, into $out"
 for view in normal floor-alpha accum-alpha floor-rgb violations isolation; do
@@ -33,4 +45,6 @@ echo "Done. Images are in $out:"
 echo "  normal.floorN.png      the scene seen from floor N (also normal.floorN.exr: half, linear)"
 echo "  <view>.floorN.png      debug views: floor-alpha accum-alpha floor-rgb violations isolation"
 echo "  <view>.stats.json      load and per-frame statistics"
+echo "  validation/<plugin>/index.html   the harness's reports (report.json beside each)"
+echo "Registry: $build/validation/VALIDATION-REGISTRY.md"
 [ -f "$out/contact-sheet.png" ] && echo "  contact-sheet.png      all views (rows) x floors (columns)"

@@ -1,0 +1,2 @@
+// Placeholder: the broken-plugin battery.
+#include <gtest/gtest.h>

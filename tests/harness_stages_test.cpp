@@ -1,0 +1,2 @@
+// Placeholder: stage transitions through the CLI.
+#include <gtest/gtest.h>
