@@ -210,17 +210,28 @@ uint64_t resident_bytes() {
     return resident * uint64_t(sysconf(_SC_PAGESIZE));
 }
 
-// ---- the kinds --------------------------------------------------------------------------
-
-// Renders the plugin's floors (or the composite) and checks each against its input.
-Result<void> run_contract(const CaseContext& c, Session& s, CaseWriter& w) {
-    auto scene = write_scene(plugin_everywhere(c), c.case_directory, "scene");
+// Writes the layout's scene and loads it. A scene the host refuses (the plugin's build()
+// failed, a shader did not compile) is the case's "load" failure: it is recorded and the
+// result is null, so the case stops there. Environment failures come back as errors.
+Result<std::unique_ptr<Compositor>> load_layout(const CaseContext& c, Session& s, CaseWriter& w,
+                                                const SceneLayout& layout, const std::string& name) {
+    auto scene = write_scene(layout, c.case_directory, name);
     if (!scene) return scene.error();
     auto comp = load(s, scene.value());
     if (!comp) {
         w.add(load_failure(comp.error()));
-        return {};
+        return std::unique_ptr<Compositor>();
     }
+    return comp;
+}
+
+// ---- the kinds --------------------------------------------------------------------------
+
+// Renders the plugin's floors (or the composite) and checks each against its input.
+Result<void> run_contract(const CaseContext& c, Session& s, CaseWriter& w) {
+    auto comp = load_layout(c, s, w, plugin_everywhere(c), "scene");
+    if (!comp) return comp.error();
+    if (!*comp) return {};
     std::vector<Capture> captures;
     std::vector<FloorImages> floors;
     if (c.plugin.is_global()) {
@@ -249,13 +260,9 @@ Result<void> run_contract(const CaseContext& c, Session& s, CaseWriter& w) {
 // Two frames of each floor must match bit for bit; the digest lets the parent compare two
 // processes. The outputs are kept as EXR so the parent can show where they differ.
 Result<void> run_determinism(const CaseContext& c, Session& s, CaseWriter& w) {
-    auto scene = write_scene(plugin_everywhere(c), c.case_directory, "scene");
-    if (!scene) return scene.error();
-    auto comp = load(s, scene.value());
-    if (!comp) {
-        w.add(load_failure(comp.error()));
-        return {};
-    }
+    auto comp = load_layout(c, s, w, plugin_everywhere(c), "scene");
+    if (!comp) return comp.error();
+    if (!*comp) return {};
     std::vector<ImageRGBA> outputs;
     CheckAccumulator frames("determinism", "two frames of every floor matched bit for bit");
     for (uint32_t f = 0; f < c.spec.floors; ++f) {
@@ -287,13 +294,9 @@ Result<void> run_determinism(const CaseContext& c, Session& s, CaseWriter& w) {
 // Floors 0, 1, 0 in one load; each floor alone; a second load; memory over many switches.
 Result<void> run_state_isolation(const CaseContext& c, Session& s, CaseWriter& w) {
     const SceneLayout layout = plugin_everywhere(c);
-    auto scene = write_scene(layout, c.case_directory, "scene");
-    if (!scene) return scene.error();
-    auto comp = load(s, scene.value());
-    if (!comp) {
-        w.add(load_failure(comp.error()));
-        return {};
-    }
+    auto comp = load_layout(c, s, w, layout, "scene");
+    if (!comp) return comp.error();
+    if (!*comp) return {};
     const bool global = c.plugin.is_global();
     // What the plugin produced with floor k active: its floor, or the composite it ran on.
     auto frame = [&](Compositor& compositor, uint32_t k) -> Result<ImageRGBA> {
@@ -327,10 +330,9 @@ Result<void> run_state_isolation(const CaseContext& c, Session& s, CaseWriter& w
         // Floor 1 with the plugin on floor 1 only: what floor 0's instance does must not matter.
         SceneLayout alone = layout;
         alone.floor_effects[0].clear();
-        auto alone_scene = write_scene(alone, c.case_directory, "alone");
-        if (!alone_scene) return alone_scene.error();
-        auto alone_comp = load(s, alone_scene.value());
+        auto alone_comp = load_layout(c, s, w, alone, "alone");
         if (!alone_comp) return alone_comp.error();
+        if (!*alone_comp) return {};
         auto b1_alone = frame(**alone_comp, 1);
         if (!b1_alone) return b1_alone.error();
         expect_same(*b1, *b1_alone, 1,
@@ -338,8 +340,9 @@ Result<void> run_state_isolation(const CaseContext& c, Session& s, CaseWriter& w
                     "floors' instances)");
     }
     {
-        auto second = load(s, scene.value());
+        auto second = load_layout(c, s, w, layout, "scene");
         if (!second) return second.error();
+        if (!*second) return {};
         auto a0_reloaded = frame(**second, 0);
         if (!a0_reloaded) return a0_reloaded.error();
         expect_same(*a0, *a0_reloaded, global ? -1 : 0,
@@ -394,13 +397,9 @@ Result<void> run_floor_isolation(const CaseContext& c, Session& s, CaseWriter& w
     SceneLayout layout = plugin_everywhere(c);
     for (uint32_t f = 0; f < layout.floor_effects.size(); ++f)
         if (f != 1) layout.floor_effects[f].clear();
-    auto scene = write_scene(layout, c.case_directory, "scene");
-    if (!scene) return scene.error();
-    auto comp = load(s, scene.value());
-    if (!comp) {
-        w.add(load_failure(comp.error()));
-        return {};
-    }
+    auto comp = load_layout(c, s, w, layout, "scene");
+    if (!comp) return comp.error();
+    if (!*comp) return {};
     const uint32_t top = c.spec.floors - 1;
     auto floor1 = render_floor(**comp, 1, c.spec.time);
     if (!floor1) return floor1.error();
@@ -447,14 +446,10 @@ Result<void> run_disconnected(const CaseContext& c, Session& s, CaseWriter& w) {
                     if (others != Others::Default)
                         params[q.name] = others == Others::Min ? q.min_value : q.max_value;
                 params[p.name] = end ? p.max_value : p.min_value;
-                auto scene = write_scene(plugin_everywhere(c, params), c.case_directory,
-                                         fmt::format("{}.{}", p.name, end ? "max" : "min"));
-                if (!scene) return scene.error();
-                auto comp = load(s, scene.value());
-                if (!comp) {
-                    w.add(load_failure(comp.error()));
-                    return {};
-                }
+                const std::string name = fmt::format("{}.{}", p.name, end ? "max" : "min");
+                auto comp = load_layout(c, s, w, plugin_everywhere(c, params), name);
+                if (!comp) return comp.error();
+                if (!*comp) return {};
                 for (float t : kTimes) {
                     ACETATE_TRY((**comp).render(c.spec.floors - 1, t));
                     auto image = c.plugin.is_global() ? (**comp).read_accumulation()
@@ -530,13 +525,9 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
         }
     }
     if (c.plugin.is_global()) layout.global_effects.push_back(under_test(c));
-    auto scene = write_scene(layout, c.case_directory, "stack");
-    if (!scene) return scene.error();
-    auto comp = load(s, scene.value());
-    if (!comp) {
-        w.add(load_failure(comp.error()));
-        return {};
-    }
+    auto comp = load_layout(c, s, w, layout, "stack");
+    if (!comp) return comp.error();
+    if (!*comp) return {};
     // Companions' coverage, from their descriptors (already loaded by the scene).
     for (uint32_t f = 0; f < spec.floors; ++f)
         for (const SceneEffect& effect : layout.floor_effects[f]) {
@@ -576,10 +567,9 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
         SceneLayout alone = layout;
         for (uint32_t g = 0; g < spec.floors; ++g)
             if (g != f) alone.floor_effects[g].clear();
-        auto alone_scene = write_scene(alone, c.case_directory, fmt::format("alone{}", f));
-        if (!alone_scene) return alone_scene.error();
-        auto alone_comp = load(s, alone_scene.value());
+        auto alone_comp = load_layout(c, s, w, alone, fmt::format("alone{}", f));
         if (!alone_comp) return alone_comp.error();
+        if (!*alone_comp) return {};
         auto output = render_floor(**alone_comp, f, spec.time);
         if (!output) return output.error();
         const ImageDifference diff = compare_exact(*output, captures[f].output, f);

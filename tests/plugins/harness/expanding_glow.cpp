@@ -5,6 +5,8 @@
 // undeclared_expansion.cpp is the same shader declared preserving.
 #include <acetate/effect.hpp>
 
+#include "glow_shader.hpp"
+
 class ExpandingGlow final : public acetate::sdk::Effect {
 public:
     acetate::sdk::EffectInfo info() const override {
@@ -18,20 +20,7 @@ public:
     }
     void build(acetate::sdk::Graph& graph, const acetate::sdk::Floor&) const override {
         graph.pass({.name = "glow",
-                    .glsl = R"(
-// "previous" is canvas-sized; clamp so no fetch falls outside it.
-vec4 tap(ivec2 p) {
-    ivec2 last = ivec2(acetate_canvas.xy) - 1;
-    return texelFetch(previous, clamp(p, ivec2(0), last), 0);
-}
-void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
-    vec4 prev = texelFetch(previous, p, 0);
-    vec4 around = 0.25 * (tap(p + ivec2(2, 0)) + tap(p - ivec2(2, 0)) +
-                          tap(p + ivec2(0, 2)) + tap(p - ivec2(0, 2)));
-    out_color = max(prev, param_strength * around);
-}
-)",
+                    .glsl = kGlowShader,
                     .inputs = {"previous"}});
     }
 };
