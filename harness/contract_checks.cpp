@@ -138,7 +138,8 @@ void check_finite(const FloorImages& floor, CheckAccumulator& out) {
 
 std::vector<CheckResult> check_contract(
     const std::vector<FloorImages>& floors, bool expanding,
-    std::map<std::string, std::map<int64_t, ImageRGBA>>* heat_maps) {
+    std::map<std::string, std::map<int64_t, ImageRGBA>>* heat_maps,
+    const std::vector<FloorImages>& finite_only) {
     CheckAccumulator premultiplied("premultiplied",
                                    "rgb within 2^-24 of 0 wherever alpha is below 2^-24");
     CheckAccumulator coverage("coverage", expanding
@@ -154,6 +155,7 @@ std::vector<CheckResult> check_contract(
         check_alpha_leak(floor, leak);
         check_finite(floor, finite);
     }
+    for (const FloorImages& image : finite_only) check_finite(image, finite);
     std::vector<CheckResult> results;
     for (CheckAccumulator* acc : {&premultiplied, &coverage, &leak, &finite}) {
         CheckResult r = acc->finish();

@@ -52,9 +52,12 @@ void check_alpha_leak(const FloorImages& floor, CheckAccumulator& out);
 void check_finite(const FloorImages& floor, CheckAccumulator& out);
 
 // The four checks above over `floors`, in that order, with their heat maps as images of
-// `heat_maps` (check -> floor -> image).
-std::vector<CheckResult> check_contract(const std::vector<FloorImages>& floors, bool expanding,
-                                        std::map<std::string, std::map<int64_t, ImageRGBA>>* heat_maps);
+// `heat_maps` (check -> floor -> image). `finite_only` (a composite, say: no input to compare
+// with) is checked for NaN and infinity alone.
+std::vector<CheckResult> check_contract(
+    const std::vector<FloorImages>& floors, bool expanding,
+    std::map<std::string, std::map<int64_t, ImageRGBA>>* heat_maps,
+    const std::vector<FloorImages>& finite_only = {});
 
 // Where two images differ bit for bit: the number of pixels and the first few as examples
 // (input = a, output = b). Sizes must match.
