@@ -7,6 +7,8 @@
 #include <cmath>
 #include <random>
 
+#include "core/atomic_file.hpp"
+
 namespace acetate::harness {
 namespace {
 
@@ -130,8 +132,9 @@ FloorInput make_floor_input(Pattern pattern, uint32_t canvas_width, uint32_t can
     return in;
 }
 
-Result<SceneDesc> write_scene(const SceneLayout& layout, const std::filesystem::path& directory,
+Result<SceneDesc> write_scene(const SceneLayout& layout, const std::filesystem::path& where,
                               const std::string& name) {
+    const std::filesystem::path directory = std::filesystem::absolute(where);
     auto effects_json = [](const std::vector<SceneEffect>& effects) {
         json out = json::array();
         for (const SceneEffect& e : effects) {
@@ -171,8 +174,12 @@ Result<SceneDesc> write_scene(const SceneLayout& layout, const std::filesystem::
                   {"floors", floors}};
     if (!layout.global_effects.empty())
         scene["global_effects"] = effects_json(layout.global_effects);
+    // Written beside its images, so the case can be rendered again by hand with `acetate
+    // render`; parsed from the same text, so what runs is exactly what the file says.
     const auto file = directory / (name + ".json");
-    return parse_scene_text(scene.dump(2), file);
+    const std::string text = scene.dump(2) + "\n";
+    ACETATE_TRY(write_file_atomically(file, text));
+    return parse_scene_text(text, file);
 }
 
 }  // namespace acetate::harness

@@ -60,8 +60,11 @@ struct RunContext {
 };
 
 std::string reproduce_command(const ValidateOptions& o, const std::string& case_id) {
-    return fmt::format("acetate-harness validate {} --strictness {} --seed {} --case {}",
-                       o.plugin.string(), o.strictness, o.seed, case_id);
+    std::string command = fmt::format(
+        "acetate-harness validate {} --strictness {} --seed {} --case {} --registry {}",
+        o.plugin.string(), o.strictness, o.seed, case_id, o.registry.string());
+    for (const fs::path& dir : o.plugin_paths) command += " --plugin-path " + dir.string();
+    return command;
 }
 
 // Runs `cases`, each in a child; prints a progress line as each finishes.
@@ -109,6 +112,11 @@ std::vector<CaseResult> run_cases(RunContext& run, const std::vector<CaseSpec>& 
             // case failed, and its last log line says why.
             result.verdict = Verdict::Fail;
             result.message = fmt::format("{}: {}", outcome.message, last_line(log));
+            CheckResult run_check;
+            run_check.check = "run";
+            run_check.verdict = Verdict::Fail;
+            run_check.message = "the case could not run: " + result.message;
+            result.checks.push_back(run_check);
         }
         result.id = cases[i].id;
         result.description = cases[i].description;
@@ -173,6 +181,8 @@ void compare_across_processes(std::vector<CaseResult>& results, const fs::path& 
     for (CaseResult& r : results) {
         CheckResult* state = find_check(r, "state-isolation");
         if (!state || state->verdict == Verdict::Pass) continue;
+        std::printf("note: %s: state-isolation not judged: the plugin is not deterministic\n",
+                    r.id.c_str());
         state->verdict = Verdict::Skip;
         state->message = "not judged: the plugin is not deterministic (see determinism), so its "
                          "images differ between renders anyway";
@@ -230,13 +240,20 @@ std::vector<CompanionPlugin> find_companions(const Registry& registry, const Plu
 }
 
 Result<void> record(const ValidateOptions& o, const PluginInfo& plugin, ValidationStage stage,
-                    const std::vector<CaseResult>& results, const std::string& report) {
+                    const std::vector<CaseResult>& results, const std::string& report,
+                    const std::vector<CompanionPlugin>& companions) {
     StageEvidence evidence;
     evidence.harness_version = kHarnessVersion;
     evidence.counts = verdict_counts(results);
     evidence.report = report;
     evidence.summary = fmt::format("{} cases at strictness {}, seed {}: all passed",
                                    results.size(), o.strictness, o.seed);
+    if (stage == ValidationStage::Integrated) {
+        std::vector<std::string> ids;
+        for (const CompanionPlugin& c : companions) ids.push_back(c.id);
+        evidence.summary += ids.empty() ? "; no other integrated plugin yet"
+                                        : fmt::format("; with {}", fmt::join(ids, ", "));
+    }
     return Registry::update(
         o.registry,
         [&](Registry& r) {
@@ -411,9 +428,9 @@ int run_validate(const ValidateOptions& o) {
         return finish(1);
     };
 
-    // Every child runs with the Khronos validation layer unless the caller chose otherwise:
-    // a validation message while the plugin runs fails the vulkan-validation check.
-    setenv("ACETATE_VALIDATION", "1", 0);
+    // Every child runs with the Khronos validation layer: a validation message while the
+    // plugin runs fails the vulkan-validation check, and evidence is never recorded without.
+    setenv("ACETATE_VALIDATION", "1", 1);
     auto described = describe_in_child(o.self, o.plugin, o.report_directory, o.timeout_seconds);
     if (!described) return fail_run(described.error().message);
     const PluginInfo plugin = std::move(described.value());
@@ -454,7 +471,8 @@ int run_validate(const ValidateOptions& o) {
     };
     RunContext run{o, plugin, plugin_info_file};
     // Which stages may be recorded: each needs the one before it, for this binary and source.
-    auto try_stage = [&](ValidationStage stage, const std::vector<CaseSpec>& cases) {
+    auto try_stage = [&](ValidationStage stage, const std::vector<CaseSpec>& cases,
+                         const std::vector<CompanionPlugin>& companions) {
         StageRun stage_run;
         stage_run.stage = to_string(stage);
         run.total += cases.size();
@@ -475,7 +493,8 @@ int run_validate(const ValidateOptions& o) {
                                   o.plugin.string())
                     : "");
         } else if (auto r = record(o, plugin, stage, results,
-                                   fs::absolute(o.report_directory / "report.json").string());
+                                   fs::absolute(o.report_directory / "report.json").string(),
+                                   companions);
                    !r) {
             stage_run.note = "passed, but recording failed: " + r.error().message;
             stage_run.passed = false;
@@ -488,8 +507,19 @@ int run_validate(const ValidateOptions& o) {
         return stage_run.passed;
     };
 
+    if (partial) {
+        // Every case a full run at this strictness has (integration ones with no companions:
+        // their ids do not depend on them).
+        std::vector<std::string> known;
+        for (const CaseSpec& c : plan_cases(plugin, o.strictness, o.seed, true, true, {}))
+            known.push_back(c.id);
+        for (const std::string& id : o.only_cases)
+            if (std::find(known.begin(), known.end(), id) == known.end())
+                return fail_run(fmt::format("--case {}: no such case at strictness {} (cases: {})",
+                                            id, o.strictness, fmt::join(known, ", ")));
+    }
     const auto alpha_cases = select(plan_cases(plugin, o.strictness, o.seed, true, false, {}));
-    bool passed = alpha_cases.empty() || try_stage(ValidationStage::AlphaTested, alpha_cases);
+    bool passed = alpha_cases.empty() || try_stage(ValidationStage::AlphaTested, alpha_cases, {});
     if (passed && o.up_to >= ValidationStage::Integrated) {
         std::vector<std::string> notes;
         auto registry = Registry::load(o.registry);
@@ -499,7 +529,7 @@ int run_validate(const ValidateOptions& o) {
         std::printf("integration: with %zu other integrated plugin%s%s\n", companions.size(),
                     companions.size() == 1 ? "" : "s", companions.empty() ? " (none yet)" : "");
         const auto cases = select(plan_cases(plugin, o.strictness, o.seed, false, true, companions));
-        if (!cases.empty()) passed = try_stage(ValidationStage::Integrated, cases) && passed;
+        if (!cases.empty()) passed = try_stage(ValidationStage::Integrated, cases, companions) && passed;
         if (passed && !partial) {
             auto imported = import_committed(o, plugin);
             if (!imported) return fail_run(imported.error().message);

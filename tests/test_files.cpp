@@ -4,7 +4,13 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <sys/wait.h>
+
+#include <atomic>
+#include <cstdlib>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <stdexcept>
 
 namespace acetate::test {
@@ -37,6 +43,46 @@ std::filesystem::path write_exr(const std::filesystem::path& file, const ImageRG
         !out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
         throw std::runtime_error("cannot write " + file.string());
     return file;
+}
+
+std::string shell_quote(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string read_file(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::vector<std::string> nonempty_lines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty()) lines.push_back(line);
+    return lines;
+}
+
+std::string CommandResult::describe() const {
+    return "command: " + command + "\nexit code: " + std::to_string(code) + "\n--- stdout ---\n" +
+           out + "--- stderr ---\n" + err;
+}
+
+CommandResult run_command(const std::string& command, const std::filesystem::path& capture_dir) {
+    static std::atomic<int> counter{0};
+    const std::string n = std::to_string(counter++);
+    const auto out_file = capture_dir / ("command-" + n + ".stdout");
+    const auto err_file = capture_dir / ("command-" + n + ".stderr");
+    CommandResult result;
+    result.command = command;
+    const int raw = std::system(("(" + command + ") >" + shell_quote(out_file.string()) + " 2>" +
+                                 shell_quote(err_file.string()) + " </dev/null")
+                                    .c_str());
+    result.code = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    result.out = read_file(out_file);
+    result.err = read_file(err_file);
+    return result;
 }
 
 }  // namespace acetate::test

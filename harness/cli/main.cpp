@@ -87,6 +87,7 @@ int run_promote(const fs::path& plugin, const fs::path& registry, const std::str
             const ValidationStage stage = r.effective_stage(info->id, info->version,
                                                             info->binary_sha256,
                                                             info->source_digest);
+            if (stage == ValidationStage::Validated) return {};  // nothing to do; said below
             if (stage != ValidationStage::Integrated)
                 return make_error(
                     ErrorCode::InvalidInput,
@@ -98,8 +99,16 @@ int run_promote(const fs::path& plugin, const fs::path& registry, const std::str
         },
         registry_markdown_path(registry));
     if (!updated) return fail(updated.error().message);
-    std::printf("%s %s: promoted to VALIDATED by %s (registry %s)\n", info->id.c_str(),
-                info->version.c_str(), by.c_str(), registry.string().c_str());
+    auto after = Registry::load(registry);
+    const RegistryEntry* entry = after ? after->find(info->id, info->version) : nullptr;
+    if (entry && entry->promotion && entry->promotion->by != by)
+        std::printf("%s %s: already VALIDATED for this binary (promoted by %s at %s); nothing "
+                    "recorded\n",
+                    info->id.c_str(), info->version.c_str(), entry->promotion->by.c_str(),
+                    entry->promotion->at.c_str());
+    else
+        std::printf("%s %s: promoted to VALIDATED by %s (registry %s)\n", info->id.c_str(),
+                    info->version.c_str(), by.c_str(), registry.string().c_str());
     return 0;
 }
 
@@ -238,6 +247,8 @@ int main(int argc, char** argv) {
     c->add_option("--out", case_out)->required();
     c->add_option("--report", case_report)->required();
 
+    // Options of the whole command (--registry) may also follow the subcommand.
+    for (CLI::App* sub : {v, r, p, s}) sub->fallthrough();
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -251,8 +262,10 @@ int main(int argc, char** argv) {
             validate.registry = registry;
             validate.self = self_path();
             validate.signoffs = no_signoffs ? std::nullopt : signoffs_flag ? signoffs_flag : default_signoffs();
-            validate.report_directory =
-                report_flag ? *report_flag : fs::path("harness-report") / validate.plugin.stem();
+            // Absolute: children run with their own folders, and the scenes they write name
+            // their images by path.
+            validate.report_directory = fs::absolute(
+                report_flag ? *report_flag : fs::path("harness-report") / validate.plugin.stem());
             std::error_code ec;
             if (!fs::is_regular_file(validate.plugin, ec))
                 return fail(fmt::format("{}: no such plugin file", validate.plugin.string()));
