@@ -190,10 +190,13 @@ void colour_at_zero(const HarnessRun& run) {
     const std::string prefix = "acetate-harness validate ";
     ASSERT_EQ(reproduce.rfind(prefix, 0), 0u) << reproduce;
     const fs::path again_dir = run.dir / "again";
+    // The reproduce line names the run's registry itself.
+    EXPECT_NE(reproduce.find("--registry " + run.registry.string()), std::string::npos)
+        << reproduce;
     const std::string command =
         "cd " + shell_quote(run.dir.string()) + " && " + environment() + " " +
-        shell_quote(ACETATE_HARNESS_PATH) + " --registry " + shell_quote(run.registry.string()) +
-        " validate " + reproduce.substr(prefix.size()) + " --no-signoffs --report " +
+        shell_quote(ACETATE_HARNESS_PATH) + " validate " + reproduce.substr(prefix.size()) +
+        " --no-signoffs --report " +
         shell_quote(again_dir.string()) + " --jobs 2 --timeout " +
         std::to_string(kTimeoutSeconds) + " --stage alpha-tested";
     const test::CommandResult again = test::run_command(command, run.dir);
