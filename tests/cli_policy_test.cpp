@@ -30,25 +30,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string quoted(const std::string& text) {
-    std::string out = "'";
-    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-std::string read_all(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        if (!line.empty()) lines.push_back(line);
-    return lines;
-}
-
 bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }
@@ -115,19 +96,19 @@ class HostPolicy : public ::testing::Test {
         const char* xdg_env = std::getenv("XDG_CACHE_HOME");
         CliRun run;
         run.command =
-            "cd " + quoted(dir_.string()) + " && ACETATE_VALIDATION=1 MESA_SHADER_CACHE_DIR=" +
-            quoted(mesa_env && *mesa_env ? mesa_env : (cache / "mesa").string()) +
-            " XDG_CACHE_HOME=" + quoted(xdg_env && *xdg_env ? xdg_env : (cache / "xdg").string()) +
-            " LD_DEBUG=files LD_DEBUG_OUTPUT=" + quoted((ld_dir / "ld").string()) + " " + env +
-            " " + quoted(ACETATE_CLI_PATH) + " render " + args + " --plugin-path " +
-            quoted(plugins_.string());
-        const int raw = std::system((run.command + " >" + quoted(out_file.string()) + " 2>" +
-                                     quoted(err_file.string()) + " </dev/null")
+            "cd " + test::shell_quote(dir_.string()) + " && ACETATE_VALIDATION=1 MESA_SHADER_CACHE_DIR=" +
+            test::shell_quote(mesa_env && *mesa_env ? mesa_env : (cache / "mesa").string()) +
+            " XDG_CACHE_HOME=" + test::shell_quote(xdg_env && *xdg_env ? xdg_env : (cache / "xdg").string()) +
+            " LD_DEBUG=files LD_DEBUG_OUTPUT=" + test::shell_quote((ld_dir / "ld").string()) + " " + env +
+            " " + test::shell_quote(ACETATE_CLI_PATH) + " render " + args + " --plugin-path " +
+            test::shell_quote(plugins_.string());
+        const int raw = std::system((run.command + " >" + test::shell_quote(out_file.string()) + " 2>" +
+                                     test::shell_quote(err_file.string()) + " </dev/null")
                                         .c_str());
         run.code = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-        run.out = read_all(out_file);
-        run.err = read_all(err_file);
-        for (const auto& item : fs::directory_iterator(ld_dir)) run.ld_log += read_all(item.path());
+        run.out = test::read_file(out_file);
+        run.err = test::read_file(err_file);
+        for (const auto& item : fs::directory_iterator(ld_dir)) run.ld_log += test::read_file(item.path());
         return run;
     }
 
@@ -176,9 +157,9 @@ class HostPolicy : public ::testing::Test {
 // (a) Nothing validated: refused in one line, the library never opened, nothing written.
 TEST_F(HostPolicy, AnEmptyRegistryRefusesThePluginInOneLine) {
     const fs::path registry = dir_ / "no-such-registry.json";
-    const CliRun run = render("scene.json -o out.png --registry " + quoted(registry.string()));
+    const CliRun run = render("scene.json -o out.png --registry " + test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 1) << run.describe();
-    const auto lines = lines_of(run.err);
+    const auto lines = test::nonempty_lines(run.err);
     ASSERT_EQ(lines.size(), 1u) << run.describe();
     for (const std::string& part :
          {std::string("acetate: scene.json: floors[0].effects[0]"), std::string("acetate.lighting"),
@@ -197,21 +178,21 @@ TEST_F(HostPolicy, AValidatedBinaryRenders) {
     write_validated_registry(registry);
     if (HasFatalFailure()) return;
 
-    CliRun run = render("scene.json -o out.png --registry " + quoted(registry.string()));
+    CliRun run = render("scene.json -o out.png --registry " + test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(run.err.empty()) << run.describe();
     EXPECT_TRUE(fs::exists(dir_ / "out.png")) << run.describe();
     EXPECT_TRUE(opened_the_copy(run, plugin_file())) << run.describe();
 
-    run = render("scene.json -o env.png", "ACETATE_REGISTRY=" + quoted(registry.string()));
+    run = render("scene.json -o env.png", "ACETATE_REGISTRY=" + test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(run.err.empty()) << run.describe();
     EXPECT_TRUE(fs::exists(dir_ / "env.png")) << run.describe();
 
     // --registry wins over ACETATE_REGISTRY.
     test::write_text(dir_ / "broken.json", "{ not a registry");
-    run = render("scene.json -o flag.png --registry " + quoted(registry.string()),
-                 "ACETATE_REGISTRY=" + quoted((dir_ / "broken.json").string()));
+    run = render("scene.json -o flag.png --registry " + test::shell_quote(registry.string()),
+                 "ACETATE_REGISTRY=" + test::shell_quote((dir_ / "broken.json").string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(fs::exists(dir_ / "flag.png")) << run.describe();
 }
@@ -221,7 +202,7 @@ TEST_F(HostPolicy, AChangedBinaryIsRefused) {
     const fs::path registry = dir_ / "registry.json";
     write_validated_registry(registry);
     if (HasFatalFailure()) return;
-    std::string bytes = read_all(plugin_file());
+    std::string bytes = test::read_file(plugin_file());
     ASSERT_FALSE(bytes.empty());
     bytes.back() = char(bytes.back() ^ 0xff);
     test::write_text(plugin_file(), bytes);
@@ -229,9 +210,9 @@ TEST_F(HostPolicy, AChangedBinaryIsRefused) {
     ASSERT_TRUE(changed_sha);
     ASSERT_NE(changed_sha.value(), validated_sha_);
 
-    const CliRun run = render("scene.json -o out.png --registry " + quoted(registry.string()));
+    const CliRun run = render("scene.json -o out.png --registry " + test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 1) << run.describe();
-    const auto lines = lines_of(run.err);
+    const auto lines = test::nonempty_lines(run.err);
     ASSERT_EQ(lines.size(), 1u) << run.describe();
     for (const std::string& part :
          {std::string("acetate.lighting"), plugin_file().string(),
@@ -249,9 +230,9 @@ TEST_F(HostPolicy, AChangedBinaryIsRefused) {
 TEST_F(HostPolicy, AllowUnvalidatedLoadsWithAWarning) {
     const fs::path registry = dir_ / "no-such-registry.json";
     const CliRun run =
-        render("scene.json -o out.png --allow-unvalidated --registry " + quoted(registry.string()));
+        render("scene.json -o out.png --allow-unvalidated --registry " + test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 0) << run.describe();
-    const auto lines = lines_of(run.err);
+    const auto lines = test::nonempty_lines(run.err);
     ASSERT_EQ(lines.size(), 1u) << run.describe();
     EXPECT_EQ(lines[0].rfind("acetate: warning: loading unvalidated plugin acetate.lighting (" +
                                  plugin_file().string() + "): ",
@@ -269,7 +250,7 @@ TEST_F(HostPolicy, AllowUnvalidatedIsSilentForAValidatedBinary) {
     write_validated_registry(registry);
     if (HasFatalFailure()) return;
     const CliRun run =
-        render("scene.json -o out.png --allow-unvalidated --registry " + quoted(registry.string()));
+        render("scene.json -o out.png --allow-unvalidated --registry " + test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(run.err.empty()) << run.describe();
 }
@@ -278,9 +259,9 @@ TEST_F(HostPolicy, AllowUnvalidatedIsSilentForAValidatedBinary) {
 TEST_F(HostPolicy, AMalformedRegistryIsOneLineNamingTheFile) {
     const fs::path registry = dir_ / "registry.json";
     test::write_text(registry, "{ \"format\": \"acetate-registry/1\", \"plugins\": [ \n");
-    CliRun run = render("scene.json -o out.png --registry " + quoted(registry.string()));
+    CliRun run = render("scene.json -o out.png --registry " + test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 1) << run.describe();
-    auto lines = lines_of(run.err);
+    auto lines = test::nonempty_lines(run.err);
     ASSERT_EQ(lines.size(), 1u) << run.describe();
     EXPECT_TRUE(contains(lines[0], registry.string())) << lines[0];
     EXPECT_FALSE(fs::exists(dir_ / "out.png"));
@@ -293,9 +274,9 @@ TEST_F(HostPolicy, AMalformedRegistryIsOneLineNamingTheFile) {
   {"id": "acetate.lighting", "version": "1.0.0", "stage": "VALIDATED",
    "binary_sha256": ")" + sha + R"(", "source_digest": ")" + sha + R"("}]})");
     run = render("scene.json -o out.png --allow-unvalidated --registry " +
-                 quoted(registry.string()));
+                 test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 1) << run.describe();
-    lines = lines_of(run.err);
+    lines = test::nonempty_lines(run.err);
     ASSERT_EQ(lines.size(), 1u) << run.describe();
     EXPECT_TRUE(contains(lines[0], registry.string() + ": plugins[0]")) << lines[0];
     EXPECT_FALSE(fs::exists(dir_ / "out.png"));
@@ -304,13 +285,13 @@ TEST_F(HostPolicy, AMalformedRegistryIsOneLineNamingTheFile) {
 // (f) A scene without plugins involves no policy: the registry is not even read.
 TEST_F(HostPolicy, ASceneWithoutPluginsNeedsNoRegistry) {
     CliRun run = render("plain.json -o empty.png --registry " +
-                        quoted((dir_ / "no-such-registry.json").string()));
+                        test::shell_quote((dir_ / "no-such-registry.json").string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(run.err.empty()) << run.describe();
     EXPECT_TRUE(fs::exists(dir_ / "empty.png"));
 
     test::write_text(dir_ / "broken.json", "{ not a registry");
-    run = render("plain.json -o broken.png --registry " + quoted((dir_ / "broken.json").string()));
+    run = render("plain.json -o broken.png --registry " + test::shell_quote((dir_ / "broken.json").string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(fs::exists(dir_ / "broken.png"));
 }
@@ -322,7 +303,7 @@ TEST_F(HostPolicy, WithoutFlagOrEnvironmentTheBuildTreeRegistryDecides) {
     ::unsetenv("ACETATE_REGISTRY");
     const fs::path default_file = registry_path(std::nullopt);
     const CliRun run = render("scene.json -o out.png", "env -u ACETATE_REGISTRY");
-    const auto lines = lines_of(run.err);
+    const auto lines = test::nonempty_lines(run.err);
     auto registry = Registry::load(default_file);
     const std::string sha = file_sha256(plugin_file()).value();
     if (registry && registry->is_validated("acetate.lighting", sha)) {
@@ -340,9 +321,9 @@ TEST_F(HostPolicy, WithoutFlagOrEnvironmentTheBuildTreeRegistryDecides) {
 // A refused plugin fails its scene only: the other scenes render, the exit status is 1.
 TEST_F(HostPolicy, ARefusedSceneLetsTheOthersRender) {
     const CliRun run = render("plain.json scene.json plain.json -o out.png --registry " +
-                              quoted((dir_ / "no-such-registry.json").string()));
+                              test::shell_quote((dir_ / "no-such-registry.json").string()));
     EXPECT_EQ(run.code, 1) << run.describe();
-    const auto lines = lines_of(run.err);
+    const auto lines = test::nonempty_lines(run.err);
     ASSERT_EQ(lines.size(), 1u) << run.describe();
     EXPECT_TRUE(contains(lines[0], "scene.json: floors[0].effects[0]")) << lines[0];
     EXPECT_TRUE(fs::exists(dir_ / "out.scene0.png")) << run.describe();

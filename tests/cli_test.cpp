@@ -33,25 +33,6 @@ using nlohmann::json;
 // ---------------------------------------------------------------------------------------------
 // Running the binary
 
-std::string quoted(const std::string& text) {
-    std::string out = "'";
-    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-std::string read_all(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        if (!line.empty()) lines.push_back(line);
-    return lines;
-}
-
 std::string lower(std::string text) {
     std::transform(text.begin(), text.end(), text.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
@@ -90,16 +71,16 @@ CliRun run_acetate(const fs::path& dir, const std::string& args) {
     fs::create_directories(mesa, ec);
     fs::create_directories(xdg, ec);
     CliRun run;
-    run.command = "cd " + quoted(dir.string()) + " && ACETATE_VALIDATION=1 MESA_SHADER_CACHE_DIR=" +
-                  quoted(mesa.string()) + " XDG_CACHE_HOME=" + quoted(xdg.string()) + " " +
-                  quoted(ACETATE_CLI_PATH) + " " + args;
-    const std::string shell = run.command + " >" + quoted(out_file.string()) + " 2>" +
-                              quoted(err_file.string()) + " </dev/null";
+    run.command = "cd " + test::shell_quote(dir.string()) + " && ACETATE_VALIDATION=1 MESA_SHADER_CACHE_DIR=" +
+                  test::shell_quote(mesa.string()) + " XDG_CACHE_HOME=" + test::shell_quote(xdg.string()) + " " +
+                  test::shell_quote(ACETATE_CLI_PATH) + " " + args;
+    const std::string shell = run.command + " >" + test::shell_quote(out_file.string()) + " 2>" +
+                              test::shell_quote(err_file.string()) + " </dev/null";
     run.raw_status = std::system(shell.c_str());
     run.exited = run.raw_status != -1 && WIFEXITED(run.raw_status);
     run.code = run.exited ? WEXITSTATUS(run.raw_status) : -1;
-    run.out = read_all(out_file);
-    run.err = read_all(err_file);
+    run.out = test::read_file(out_file);
+    run.err = test::read_file(err_file);
     return run;
 }
 
@@ -112,7 +93,7 @@ bool is_unvalidated_plugin_warning(const std::string& line) {
 
 // No Vulkan validation message and no sign of a crash.
 void expect_clean_stderr(const CliRun& run) {
-    for (const std::string& line : lines_of(run.err)) {
+    for (const std::string& line : test::nonempty_lines(run.err)) {
         if (is_unvalidated_plugin_warning(line)) continue;
         EXPECT_EQ(lower(line).find("validation"), std::string::npos)
             << "validation message on stderr: " << line << "\n" << run.describe();
@@ -128,7 +109,7 @@ void expect_refused(const CliRun& run, const std::vector<std::string>& names) {
     EXPECT_TRUE(run.exited) << "killed by a signal?\n" << run.describe();
     EXPECT_TRUE(run.code == 1 || run.code == 2) << run.describe();
     expect_clean_stderr(run);
-    const std::vector<std::string> lines = lines_of(run.err);
+    const std::vector<std::string> lines = test::nonempty_lines(run.err);
     ASSERT_EQ(lines.size(), 1u) << "expected exactly one line on stderr\n" << run.describe();
     for (const std::string& name : names)
         EXPECT_NE(lines[0].find(name), std::string::npos)
@@ -392,7 +373,7 @@ TEST(CliStats, ReportsLoadFramesAndTargets) {
     expect_success(run);
     ASSERT_TRUE(fs::exists(dir / "stats.json")) << run.describe();
     json stats;
-    ASSERT_NO_THROW(stats = json::parse(read_all(dir / "stats.json")));
+    ASSERT_NO_THROW(stats = json::parse(test::read_file(dir / "stats.json")));
 
     ASSERT_TRUE(stats.contains("device"));
     ASSERT_TRUE(stats["device"].is_string());
@@ -485,14 +466,14 @@ TEST_P(HarbourView, RendersToPngAndExrWithoutViolations) {
         const std::string stats_file = "stats" + std::string(ext) + ".json";
         // The harbour's plugins are the build's, validated or not: the host policy is
         // tested in cli_policy_test.cpp.
-        const CliRun run = run_acetate(dir, "render " + quoted(scene.string()) + " -o " + out +
+        const CliRun run = run_acetate(dir, "render " + test::shell_quote(scene.string()) + " -o " + out +
                                                 " --view " + view + " --stats " + stats_file +
                                                 " --allow-unvalidated");
         expect_success(run);
         ASSERT_TRUE(fs::exists(dir / out)) << run.describe();
         ASSERT_TRUE(fs::exists(dir / stats_file)) << run.describe();
         json stats;
-        ASSERT_NO_THROW(stats = json::parse(read_all(dir / stats_file)));
+        ASSERT_NO_THROW(stats = json::parse(test::read_file(dir / stats_file)));
         ASSERT_TRUE(stats.contains("frames")) << stats.dump();
         ASSERT_FALSE(stats["frames"].empty());
         EXPECT_EQ(total_violations(stats), 0u) << stats.dump(2);

@@ -46,22 +46,6 @@ bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }
 
-// The variables every harness command runs with: the Khronos validation layer on (so the
-// vulkan-validation check is judged, not skipped), and shader caches that do not depend on
-// the user's (ctest sets them to the build tree's test cache).
-std::string environment() {
-    std::string env = "ACETATE_VALIDATION=1";
-    const fs::path cache = fs::temp_directory_path() / "acetate-harness-test-cache";
-    for (const auto& [name, sub] : {std::pair{"MESA_SHADER_CACHE_DIR", "mesa"},
-                                    std::pair{"XDG_CACHE_HOME", "xdg"}}) {
-        const char* set = std::getenv(name);
-        std::string value = set && *set ? set : (cache / sub).string();
-        fs::create_directories(value);
-        env += std::string(" ") + name + "=" + shell_quote(value);
-    }
-    return env;
-}
-
 // A verdict from the report; a test failure (and FAIL) for an unknown name.
 Verdict verdict_of(const json& j) {
     const auto v = harness::parse_verdict(j.get<std::string>());
@@ -123,7 +107,7 @@ struct HarnessRun {
 test::CommandResult validate(const fs::path& dir, const fs::path& plugin, const fs::path& report,
                              const std::string& extra = "", int timeout = kTimeoutSeconds) {
     const std::string command =
-        "cd " + shell_quote(dir.string()) + " && " + environment() + " " +
+        "cd " + shell_quote(dir.string()) + " && " + test::harness_environment() + " " +
         shell_quote(ACETATE_HARNESS_PATH) + " --registry " +
         shell_quote((dir / "registry.json").string()) + " validate " +
         shell_quote(plugin.string()) + " --no-signoffs --report " + shell_quote(report.string()) +
@@ -194,7 +178,7 @@ void colour_at_zero(const HarnessRun& run) {
     EXPECT_NE(reproduce.find("--registry " + run.registry.string()), std::string::npos)
         << reproduce;
     const std::string command =
-        "cd " + shell_quote(run.dir.string()) + " && " + environment() + " " +
+        "cd " + shell_quote(run.dir.string()) + " && " + test::harness_environment() + " " +
         shell_quote(ACETATE_HARNESS_PATH) + " validate " + reproduce.substr(prefix.size()) +
         " --no-signoffs --report " +
         shell_quote(again_dir.string()) + " --jobs 2 --timeout " +

@@ -39,21 +39,6 @@ bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }
 
-// The Khronos validation layer on, and shader caches that do not depend on the user's (ctest
-// sets them to the build tree's test cache).
-std::string environment() {
-    std::string env = "ACETATE_VALIDATION=1";
-    const fs::path cache = fs::temp_directory_path() / "acetate-harness-test-cache";
-    for (const auto& [name, sub] : {std::pair{"MESA_SHADER_CACHE_DIR", "mesa"},
-                                    std::pair{"XDG_CACHE_HOME", "xdg"}}) {
-        const char* set = std::getenv(name);
-        std::string value = set && *set ? set : (cache / sub).string();
-        fs::create_directories(value);
-        env += std::string(" ") + name + "=" + shell_quote(value);
-    }
-    return env;
-}
-
 json parse_json(const std::string& text, const std::string& what) {
     try {
         return json::parse(text);
@@ -79,7 +64,7 @@ class HarnessStages : public ::testing::Test {
 
     // `acetate-harness --registry REGISTRY ARGS` in the test folder.
     CommandResult harness(const std::string& args, const fs::path& registry) const {
-        return test::run_command("cd " + shell_quote(dir_.string()) + " && " + environment() +
+        return test::run_command("cd " + shell_quote(dir_.string()) + " && " + test::harness_environment() +
                                      " " + shell_quote(ACETATE_HARNESS_PATH) + " --registry " +
                                      shell_quote(registry.string()) + " " + args,
                                  dir_);
@@ -143,7 +128,7 @@ class HarnessStages : public ::testing::Test {
 
     // `acetate render scene.json -o OUT --plugin-path <the copy's folder> --registry REGISTRY`.
     CommandResult render(const fs::path& out) const {
-        return test::run_command("cd " + shell_quote(dir_.string()) + " && " + environment() +
+        return test::run_command("cd " + shell_quote(dir_.string()) + " && " + test::harness_environment() +
                                      " " + shell_quote(ACETATE_CLI_PATH) +
                                      " render scene.json -o " + shell_quote(out.string()) +
                                      " --plugin-path " + shell_quote(plugins_.string()) +

@@ -64,6 +64,20 @@ std::vector<std::string> nonempty_lines(const std::string& text) {
     return lines;
 }
 
+std::string harness_environment() {
+    std::string env = "ACETATE_VALIDATION=1";
+    const std::filesystem::path cache =
+        std::filesystem::temp_directory_path() / "acetate-harness-test-cache";
+    for (const auto& [name, sub] : {std::pair{"MESA_SHADER_CACHE_DIR", "mesa"},
+                                    std::pair{"XDG_CACHE_HOME", "xdg"}}) {
+        const char* set = std::getenv(name);
+        std::string value = set && *set ? set : (cache / sub).string();
+        std::filesystem::create_directories(value);
+        env += std::string(" ") + name + "=" + shell_quote(value);
+    }
+    return env;
+}
+
 std::string CommandResult::describe() const {
     return "command: " + command + "\nexit code: " + std::to_string(code) + "\n--- stdout ---\n" +
            out + "--- stderr ---\n" + err;

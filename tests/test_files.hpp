@@ -41,6 +41,11 @@ struct CommandResult {
 
 // Runs `command` with sh, stdin from /dev/null, stdout and stderr captured through files in
 // `capture_dir` (each call its own pair, so calls from several threads may share the folder).
+// Variables for a command that runs acetate-harness: the Khronos validation layer on (so the
+// vulkan-validation check is judged, not skipped), and shader caches that do not depend on
+// the user's (ctest sets them to the build tree's test cache; else a private temp folder).
+std::string harness_environment();
+
 CommandResult run_command(const std::string& command, const std::filesystem::path& capture_dir);
 
 }  // namespace acetate::test
