@@ -112,9 +112,13 @@ class HostPolicy : public ::testing::Test {
         return run;
     }
 
-    // Whether the process opened the private copy of the plugin (dlopen logs "file=<path>").
+    // Whether the process dlopen'ed the private copy of the plugin (the linker logs
+    // "file=<path>"). Under a policy the loader maps the file it checked through the
+    // descriptor it holds open, so the copy appears as /proc/self/fd/N (no other library of
+    // this process is opened that way).
     static bool opened_the_copy(const CliRun& run, const fs::path& file) {
-        return contains(run.ld_log, "file=" + file.string());
+        return contains(run.ld_log, "file=" + file.string()) ||
+               contains(run.ld_log, "file=/proc/self/fd/");
     }
 
     // A registry at `file` where the probe copy (byte-identical to the plugin copy) is
@@ -335,7 +339,8 @@ TEST_F(HostPolicy, ARefusedSceneLetsTheOthersRender) {
 TEST_F(HostPolicy, TheLoaderAsksBeforeOpening) {
     std::vector<std::pair<std::string, fs::path>> asked;
     PluginLoader loader({plugins_});
-    loader.set_admission([&](const std::string& id, const fs::path& file) -> Result<void> {
+    loader.set_admission([&](const std::string& id, const fs::path& file,
+                             const fs::path&) -> Result<void> {
         asked.emplace_back(id, file);
         return make_error(ErrorCode::InvalidInput, "refused by the test");
     });
@@ -355,7 +360,8 @@ TEST_F(HostPolicy, TheLoaderAsksBeforeOpening) {
 
     // Admitted: loaded, and asked once per id.
     asked.clear();
-    loader.set_admission([&](const std::string& id, const fs::path& file) -> Result<void> {
+    loader.set_admission([&](const std::string& id, const fs::path& file,
+                             const fs::path&) -> Result<void> {
         asked.emplace_back(id, file);
         return {};
     });
@@ -363,6 +369,30 @@ TEST_F(HostPolicy, TheLoaderAsksBeforeOpening) {
     ASSERT_TRUE(loader.load("acetate.lighting"));
     EXPECT_EQ(asked.size(), 1u);
     EXPECT_EQ(loader.loaded_count(), 1u);
+}
+
+// The policy judges the bytes that get loaded: a file replaced on disk after the check (here
+// by junk, from inside the hook) is not what loads; the checked, held-open file is.
+TEST_F(HostPolicy, TheFileLoadedIsTheFileChecked) {
+    PluginLoader loader({plugins_});
+    const auto expected = file_sha256(plugin_file());
+    ASSERT_TRUE(expected);
+    std::string checked;
+    loader.set_admission([&](const std::string&, const fs::path& file,
+                             const fs::path& contents) -> Result<void> {
+        auto sha = file_sha256(contents);
+        if (!sha) return sha.error();
+        checked = sha.value();
+        test::write_text(dir_ / "swap.tmp", "not an ELF file");
+        fs::rename(dir_ / "swap.tmp", file);
+        return {};
+    });
+    auto loaded = loader.load("acetate.lighting");
+    ASSERT_TRUE(loaded) << loaded.error().message;
+    EXPECT_EQ(checked, expected.value());
+    EXPECT_EQ(loaded.value()->file, plugin_file());  // named as the user knows it
+    EXPECT_EQ(loaded.value()->descriptor.id, "acetate.lighting");
+    EXPECT_EQ(test::read_file(plugin_file()), "not an ELF file");  // the swap did happen
 }
 
 }  // namespace

@@ -53,9 +53,9 @@ bool names_a_plugin(const SceneDesc& scene) {
 PluginLoader::Admission load_policy(std::shared_ptr<const Registry> registry,
                                     std::string registry_name, bool allow_unvalidated) {
     return [registry = std::move(registry), registry_name = std::move(registry_name),
-            allow_unvalidated](const std::string& id,
-                               const std::filesystem::path& file) -> Result<void> {
-        auto sha = file_sha256(file);
+            allow_unvalidated](const std::string& id, const std::filesystem::path& file,
+                               const std::filesystem::path& contents) -> Result<void> {
+        auto sha = file_sha256(contents);  // the open file that will be loaded, not the path
         if (!sha) return sha.error();
         if (registry->binary_stage(id, sha.value()) == ValidationStage::Validated) return {};
         const std::string plugin =

@@ -4,7 +4,12 @@
 #include <boost/dll/shared_library.hpp>
 #include <fmt/format.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <sstream>
 
 namespace acetate {
@@ -32,19 +37,34 @@ std::vector<std::filesystem::path> PluginLoader::default_directories(
 }
 
 Result<std::shared_ptr<LoadedPlugin>> PluginLoader::load_file(const std::filesystem::path& file) {
-    if (admission_)
-        if (auto admitted = admission_(std::string(), file); !admitted) return admitted.error();
-    return open_library(file);
+    return admit_and_open(std::string(), file);
+}
+
+Result<std::shared_ptr<LoadedPlugin>> PluginLoader::admit_and_open(
+    const std::string& id, const std::filesystem::path& file) {
+    if (!admission_) return open_library(file, file);
+    // Pin the file: the policy reads, and dlopen maps, the same open file, so replacing the
+    // file on disk between the check and the load changes nothing.
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return make_error(ErrorCode::Io,
+                          fmt::format("{}: cannot open: {}", file.string(), std::strerror(errno)));
+    const std::filesystem::path pinned = fmt::format("/proc/self/fd/{}", fd);
+    auto admitted = admission_(id, file, pinned);
+    auto plugin = admitted ? open_library(pinned, file)
+                           : Result<std::shared_ptr<LoadedPlugin>>(admitted.error());
+    ::close(fd);  // a loaded library keeps its own mapping
+    return plugin;
 }
 
 Result<std::shared_ptr<LoadedPlugin>> PluginLoader::open_library(
-    const std::filesystem::path& file) {
+    const std::filesystem::path& library, const std::filesystem::path& file) {
     const std::string where = file.string();
     auto plugin = std::make_shared<LoadedPlugin>();
     plugin->file = file;
     try {
         plugin->library = std::make_shared<boost::dll::shared_library>(
-            file.string(), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
+            library.string(), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
     } catch (const std::exception& e) {
         // Boost.DLL's exceptions carry dlerror()'s text: missing file, missing symbol, ...
         return make_error(ErrorCode::InvalidInput,
@@ -102,9 +122,7 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::load(const std::string& id) 
             std::error_code ec;
             if (!std::filesystem::is_regular_file(file, ec)) continue;
             // The first file found is the plugin: a refused one is not skipped for a later one.
-            if (admission_)
-                if (auto admitted = admission_(id, file); !admitted) return admitted.error();
-            auto plugin = open_library(file);
+            auto plugin = admit_and_open(id, file);
             if (!plugin) return plugin.error();
             if (plugin.value()->descriptor.id != id)
                 return make_error(ErrorCode::InvalidInput,

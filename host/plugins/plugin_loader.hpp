@@ -34,9 +34,13 @@ public:
     // found and before it is opened (dlopen runs the library's static constructors, so a
     // refused file must never reach it). `id` is the id asked for by load(), or empty for
     // load_file(), whose id is not known before loading (a policy then judges the file by its
-    // bytes alone). An error refuses the file and is returned by load() / load_file() as is.
-    using Admission =
-        std::function<Result<void>(const std::string& id, const std::filesystem::path& file)>;
+    // bytes alone). `contents` names the same file held open (/proc/self/fd/N): that open file
+    // is what gets loaded if admitted, so a policy that reads its bytes from `contents` judges
+    // exactly what runs, even if `file` is replaced meanwhile. An error refuses the file and
+    // is returned by load() / load_file() as is.
+    using Admission = std::function<Result<void>(const std::string& id,
+                                                 const std::filesystem::path& file,
+                                                 const std::filesystem::path& contents)>;
 
     // Searches `directories` in order.
     explicit PluginLoader(std::vector<std::filesystem::path> directories);
@@ -66,8 +70,13 @@ public:
     size_t loaded_count() const { return by_id_.size(); }
 
 private:
-    // Opens `file` and reads its descriptor; no admission check.
-    Result<std::shared_ptr<LoadedPlugin>> open_library(const std::filesystem::path& file);
+    // Asks the admission hook (if any) about `file`, then opens it.
+    Result<std::shared_ptr<LoadedPlugin>> admit_and_open(const std::string& id,
+                                                         const std::filesystem::path& file);
+    // Opens `library` and reads its descriptor; no admission check. Messages and
+    // LoadedPlugin::file name `file` (what the user knows it as).
+    Result<std::shared_ptr<LoadedPlugin>> open_library(const std::filesystem::path& library,
+                                                       const std::filesystem::path& file);
 
     std::vector<std::filesystem::path> directories_;
     std::map<std::string, std::shared_ptr<LoadedPlugin>> by_id_;
