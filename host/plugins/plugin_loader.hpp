@@ -31,7 +31,7 @@ struct LoadedPlugin {
 class PluginLoader {
 public:
     // Decides whether a plugin file may be loaded into this process: called once the file is
-    // found and before it is opened (dlopen runs the library's static constructors, so a
+    // found and before it is loaded (dlopen runs the library's static constructors, so a
     // refused file must never reach it). `id` is the id asked for by load(), or empty for
     // load_file(), whose id is not known before loading (a policy then judges the file by its
     // bytes alone). `contents` names the same file held open (/proc/self/fd/N): that open file
