@@ -98,6 +98,14 @@ Result<ImageRGBA> render_floor(Compositor& comp, uint32_t floor, float time) {
     return comp.read_active_floor();
 }
 
+// What the plugin produced with floor `floor` active: that floor's target (a floor effect),
+// or the composite it ran on (a global effect).
+Result<ImageRGBA> plugin_output(Compositor& comp, bool global, uint32_t floor, float time) {
+    if (!global) return render_floor(comp, floor, time);
+    ACETATE_TRY(comp.render(floor, time));
+    return comp.read_accumulation();
+}
+
 // A floor's target before and after its effects.
 Result<Capture> capture_floor(Compositor& comp, uint32_t floor, float time) {
     Capture capture;
@@ -270,20 +278,22 @@ Result<void> run_determinism(const CaseContext& c, Session& s, CaseWriter& w) {
     auto comp = load_layout(c, s, w, plugin_everywhere(c), "scene");
     if (!comp) return comp.error();
     if (!*comp) return {};
+    const bool global = c.plugin.is_global();
     std::vector<ImageRGBA> outputs;
-    CheckAccumulator frames("determinism", "two frames of every floor matched bit for bit");
+    CheckAccumulator frames("determinism",
+                            global ? "two frames of the composite matched bit for bit, with "
+                                     "each floor active"
+                                   : "two frames of every floor matched bit for bit");
     for (uint32_t f = 0; f < c.spec.floors; ++f) {
-        auto first = render_floor(**comp, f, c.spec.time);
+        auto first = plugin_output(**comp, global, f, c.spec.time);
         if (!first) return first.error();
-        auto second = render_floor(**comp, f, c.spec.time);
+        auto second = plugin_output(**comp, global, f, c.spec.time);
         if (!second) return second.error();
-        const ImageDifference diff = compare_exact(*first, *second, f);
-        for (const Violation& v : diff.examples) {
-            FloorImages images{int64_t(f), &first.value(), &second.value()};
-            frames.violation(images, uint32_t(v.x), uint32_t(v.y),
-                             "the second frame differs: " + v.what);
-        }
+        record_differences(*first, *second, global ? -1 : int64_t(f), "the second frame differs",
+                           frames);
         outputs.push_back(std::move(first.value()));
+        // Kept so the parent can show where two processes differ (output.floorN: with floor N
+        // active, whichever image the plugin wrote).
         if (!save_image(c.case_directory / fmt::format("output.floor{}.exr", f), outputs.back()))
             return make_error(ErrorCode::Io, "cannot write the determinism outputs");
     }
@@ -305,22 +315,15 @@ Result<void> run_state_isolation(const CaseContext& c, Session& s, CaseWriter& w
     if (!comp) return comp.error();
     if (!*comp) return {};
     const bool global = c.plugin.is_global();
-    // What the plugin produced with floor k active: its floor, or the composite it ran on.
-    auto frame = [&](Compositor& compositor, uint32_t k) -> Result<ImageRGBA> {
-        if (!global) return render_floor(compositor, k, c.spec.time);
-        ACETATE_TRY(compositor.render(k, c.spec.time));
-        return compositor.read_accumulation();
+    auto frame = [&](Compositor& compositor, uint32_t k) {
+        return plugin_output(compositor, global, k, c.spec.time);
     };
     CheckAccumulator state("state-isolation",
                            "floors 0, 1, 0 gave floor 0 twice the same; each floor alone and a "
                            "second load gave the same images");
     auto expect_same = [&](const ImageRGBA& a, const ImageRGBA& b, int64_t floor,
                            const std::string& why) {
-        const ImageDifference diff = compare_exact(a, b, floor);
-        for (const Violation& v : diff.examples) {
-            FloorImages images{floor, &a, &b};
-            state.violation(images, uint32_t(v.x), uint32_t(v.y), why + ": " + v.what);
-        }
+        record_differences(a, b, floor, why, state);
     };
     auto a0 = frame(**comp, 0);
     if (!a0) return a0.error();
@@ -421,12 +424,9 @@ Result<void> run_floor_isolation(const CaseContext& c, Session& s, CaseWriter& w
 
     CheckAccumulator isolation("floor-isolation",
                                "the composite changed only where floor 1 has coverage");
-    const ImageDifference diff = compare_exact(*without, *with_effect, -1, &floor1.value());
-    for (const Violation& v : diff.examples) {
-        FloorImages images{-1, &without.value(), &with_effect.value()};
-        isolation.violation(images, uint32_t(v.x), uint32_t(v.y),
-                            "outside floor 1's coverage the composite changed: " + v.what);
-    }
+    record_differences(*without, *with_effect, -1,
+                       "outside floor 1's coverage the composite changed", isolation,
+                       &floor1.value());
     w.case_picture("composite.without-effect", *without);
     w.case_picture("composite.with-effect", *with_effect);
     w.add(isolation.finish());
@@ -542,6 +542,9 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
             if (plugin && plugin.value()->descriptor.coverage == ACETATE_COVERAGE_EXPANDING)
                 expanding[f] = true;
         }
+    // The whole stack once first, so that every floor's instance has run before any floor is
+    // captured: state a higher floor leaves behind would show in a lower floor's capture.
+    ACETATE_TRY((**comp).render(spec.floors - 1, spec.time));
     std::vector<Capture> captures;
     for (uint32_t f = 0; f < spec.floors; ++f) {
         auto capture = capture_floor(**comp, f, spec.time);
@@ -579,12 +582,8 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
         if (!*alone_comp) return {};
         auto output = render_floor(**alone_comp, f, spec.time);
         if (!output) return output.error();
-        const ImageDifference diff = compare_exact(*output, captures[f].output, f);
-        for (const Violation& v : diff.examples) {
-            FloorImages images{int64_t(f), &output.value(), &captures[f].output};
-            cross.violation(images, uint32_t(v.x), uint32_t(v.y),
-                            "alone, then with the other floors' effects: " + v.what);
-        }
+        record_differences(*output, captures[f].output, f,
+                           "alone, then with the other floors' effects", cross);
     }
     w.add(cross.finish());
 
@@ -596,7 +595,7 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
     (**comp).set_effects_enabled(true, true);
     if (!composite) return composite.error();
     const size_t pixels = size_t(spec.width) * spec.height;
-    std::vector<double> exact(pixels * 4, 0.0), peak(pixels, 0.0);
+    std::vector<double> exact(pixels * 4, 0.0), peak(pixels * 4, 0.0);
     for (uint32_t f = 0; f < spec.floors; ++f)
         for (size_t i = 0; i < pixels; ++i) {
             const float* in = &captures[f].input.pixels[i * 4];
@@ -607,7 +606,7 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
             for (int ch = 0; ch < 4; ++ch) {
                 double& v = exact[i * 4 + ch];
                 v = out[ch] + (1.0 - out[3]) * v;
-                peak[i] = std::max(peak[i], std::abs(v));
+                peak[i * 4 + ch] = std::max(peak[i * 4 + ch], std::abs(v));
             }
         }
     ImageRGBA reference(spec.width, spec.height);
@@ -619,26 +618,30 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
     // Where the exact value exceeds 65504 the target may hold 65504 or infinity.
     CheckResult ref;
     ref.check = "reference";
-    uint64_t warn_pixels = 0;
+    uint64_t warn_pixels = 0, fail_pixels = 0;
     double worst_steps = 0;
     int64_t worst_x = 0, worst_y = 0;
     for (uint32_t y = 0; y < spec.height; ++y)
         for (uint32_t x = 0; x < spec.width; ++x) {
             const size_t i = size_t(y) * spec.width + x;
-            const double rounding = kHalfRelative * peak[i] + kHalfAbsolute;
             double pixel_steps = 0;
             for (int ch = 0; ch < 4; ++ch) {
+                // Per channel: alpha's tolerance must not grow with an HDR colour's.
+                const double rounding = kHalfRelative * peak[i * 4 + ch] + kHalfAbsolute;
                 const double e = exact[i * 4 + ch];
                 const float g = composite->pixels[i * 4 + ch];
                 double steps = 0;
-                if (std::abs(e) > kHalfMax && (std::isinf(g) || std::abs(g) >= kHalfMax * (1 - spec.floors * kHalfRelative)) &&
-                    std::signbit(e) == std::signbit(g))
+                const bool saturated =
+                    std::abs(e) > kHalfMax &&
+                    (std::isinf(g) || std::abs(g) >= kHalfMax * (1 - spec.floors * kHalfRelative));
+                if (saturated && std::signbit(e) == std::signbit(g))
                     steps = 0;
                 else if (std::isfinite(g)) steps = std::abs(e - g) / rounding;
                 else steps = 1e30;  // NaN, or infinity where the exact value is finite
                 pixel_steps = std::max(pixel_steps, steps);
             }
             if (pixel_steps > 0.5 * spec.floors) ++warn_pixels;
+            if (pixel_steps > spec.floors) ++fail_pixels;
             if (pixel_steps > worst_steps) {
                 worst_steps = pixel_steps;
                 worst_x = x;
@@ -648,11 +651,11 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
     const double fail_steps = spec.floors;
     ref.message = fmt::format(
         "composite against the CPU reference: worst {:.3g} roundings at ({}, {}); fail above {} "
-        "(one per blend), warn above {}; {} pixels above warn",
-        worst_steps, worst_x, worst_y, fail_steps, fail_steps / 2, warn_pixels);
+        "(one per blend), warn above {}; {} pixels above warn, {} above fail",
+        worst_steps, worst_x, worst_y, fail_steps, fail_steps / 2, warn_pixels, fail_pixels);
     if (worst_steps > fail_steps) {
         ref.verdict = Verdict::Fail;
-        ref.violations = 1;
+        ref.violations = fail_pixels;
         Violation v;
         v.x = worst_x;
         v.y = worst_y;
@@ -692,6 +695,9 @@ Result<CaseResult> run_case(const CaseContext& c) {
         case CaseKind::Integration: ran = run_integration(c, *session, writer); break;
     }
     if (!ran) return ran.error();
+    // Close Vulkan first: messages at teardown (objects left alive) count too.
+    session->renderer.reset();
+    session->context.reset();
     return writer.finish();
 }
 

@@ -187,6 +187,20 @@ ImageDifference compare_exact(const ImageRGBA& a, const ImageRGBA& b, int64_t fl
     return diff;
 }
 
+void record_differences(const ImageRGBA& a, const ImageRGBA& b, int64_t floor,
+                        const std::string& why, CheckAccumulator& out,
+                        const ImageRGBA* only_where_transparent) {
+    const FloorImages images{floor, &a, &b};
+    for (uint32_t y = 0; y < a.height; ++y)
+        for (uint32_t x = 0; x < a.width; ++x) {
+            if (only_where_transparent && only_where_transparent->at(x, y)[3] != 0.0f) continue;
+            if (std::memcmp(a.at(x, y), b.at(x, y), sizeof(float) * 4) == 0) continue;
+            out.violation(images, x, y,
+                          fmt::format("{}: {} then {}", why, format_rgba(a.at(x, y)),
+                                      format_rgba(b.at(x, y))));
+        }
+}
+
 std::string digest_images(const std::vector<const ImageRGBA*>& images) {
     std::string bytes;
     for (const ImageRGBA* image : images)

@@ -68,6 +68,13 @@ struct ImageDifference {
 ImageDifference compare_exact(const ImageRGBA& a, const ImageRGBA& b, int64_t floor,
                               const ImageRGBA* only_where_transparent = nullptr);
 
+// Every pixel where `a` and `b` differ bit for bit (only where `only_where_transparent` has
+// alpha 0, when given) is a violation of `out` on `floor`: all counted and on the heat map,
+// the first few kept as examples with `why` and both values.
+void record_differences(const ImageRGBA& a, const ImageRGBA& b, int64_t floor,
+                        const std::string& why, CheckAccumulator& out,
+                        const ImageRGBA* only_where_transparent = nullptr);
+
 // SHA-256 of the images' bytes, in order (the determinism digest).
 std::string digest_images(const std::vector<const ImageRGBA*>& images);
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -59,11 +60,24 @@ struct RunContext {
     size_t done = 0, total = 0;
 };
 
+// A shell word: quoted when it holds anything but plain path characters.
+std::string shell_word(const std::string& text) {
+    const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("/._-+:=,", c);
+    });
+    if (plain) return text;
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
 std::string reproduce_command(const ValidateOptions& o, const std::string& case_id) {
     std::string command = fmt::format(
-        "acetate-harness validate {} --strictness {} --seed {} --case {} --registry {}",
-        o.plugin.string(), o.strictness, o.seed, case_id, o.registry.string());
-    for (const fs::path& dir : o.plugin_paths) command += " --plugin-path " + dir.string();
+        "acetate-harness validate {} --strictness {} --seed {} --timeout {} --case {} "
+        "--registry {} --report {}",
+        shell_word(o.plugin.string()), o.strictness, o.seed, o.timeout_seconds, shell_word(case_id),
+        shell_word(o.registry.string()), shell_word(o.report_directory.string() + "-repro"));
+    for (const fs::path& dir : o.plugin_paths) command += " --plugin-path " + shell_word(dir.string());
     return command;
 }
 
@@ -104,7 +118,9 @@ std::vector<CaseResult> run_cases(RunContext& run, const std::vector<CaseSpec>& 
         } else if (outcome.timed_out) {
             result.verdict = Verdict::Timeout;
             result.message = outcome.message;
-        } else if (outcome.signal) {
+        } else if (outcome.signal || (outcome.started && outcome.exit_code != kChildSetupFailure)) {
+            // Killed by a signal, or exited on its own with a status the harness never uses
+            // (the plugin called exit()): either way the plugin took the process down.
             result.verdict = Verdict::Crash;
             result.message = outcome.message;
         } else {
@@ -349,6 +365,9 @@ Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugi
                                      const fs::path& work_directory, double timeout_seconds) {
     std::error_code ec;
     fs::create_directories(work_directory, ec);
+    if (ec)
+        return make_error(ErrorCode::Io, fmt::format("{}: cannot create: {}",
+                                                     work_directory.string(), ec.message()));
     const fs::path out = work_directory / "plugin.json";
     fs::remove(out, ec);
     ChildJob job;
@@ -357,7 +376,8 @@ Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugi
     job.timeout = std::chrono::milliseconds(int64_t(timeout_seconds * 1000));
     ChildOutcome outcome;
     run_children({job}, 1, [&](size_t, const ChildOutcome& o) { outcome = o; });
-    if (!outcome.started || outcome.timed_out || outcome.signal || outcome.exit_code != 0) {
+    if (!outcome.started) return make_error(ErrorCode::Io, outcome.message);
+    if (outcome.timed_out || outcome.signal || outcome.exit_code != 0) {
         const std::string why = outcome.exit_code > 0
                                     ? last_line(tail_of_file(job.log, 2000))
                                     : fmt::format("{} while loading it ({})",
@@ -409,6 +429,11 @@ int run_validate(const ValidateOptions& o) {
     report.started_at = utc_now_iso8601();
     std::error_code ec;
     fs::create_directories(o.report_directory, ec);
+    if (ec) {
+        std::fprintf(stderr, "acetate-harness: %s: cannot create the report folder: %s\n",
+                     o.report_directory.string().c_str(), ec.message().c_str());
+        return 1;
+    }
     const fs::path html = o.report_directory / "index.html";
     auto finish = [&](int status) {
         report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -445,6 +470,9 @@ int run_validate(const ValidateOptions& o) {
     if (auto w = write_file_atomically(plugin_info_file, to_json(plugin).dump(2)); !w)
         return fail_run(w.error().message);
 
+    // A malformed registry stops the run here, rather than reading as "nothing recorded".
+    if (auto registry = Registry::load(o.registry); !registry)
+        return fail_run(registry.error().message);
     const bool partial = !o.only_cases.empty();
     if (!partial) {
         auto imported = import_committed(o, plugin);
@@ -470,6 +498,7 @@ int run_validate(const ValidateOptions& o) {
         return cases;
     };
     RunContext run{o, plugin, plugin_info_file};
+    bool recording_failed = false;
     // Which stages may be recorded: each needs the one before it, for this binary and source.
     auto try_stage = [&](ValidationStage stage, const std::vector<CaseSpec>& cases,
                          const std::vector<CompanionPlugin>& companions) {
@@ -492,12 +521,18 @@ int run_validate(const ValidateOptions& o) {
                     ? fmt::format(" (acetate-harness review {} --reviewer NAME --notes TEXT)",
                                   o.plugin.string())
                     : "");
+        } else if (auto same = file_sha256(o.plugin); !same || same.value() != plugin.binary_sha256) {
+            // The file changed during the run: the cases may have run another binary.
+            stage_run.note = "passed, but not recorded: the plugin file changed during the run";
+            stage_run.passed = false;
+            recording_failed = true;
         } else if (auto r = record(o, plugin, stage, results,
                                    fs::absolute(o.report_directory / "report.json").string(),
                                    companions);
                    !r) {
             stage_run.note = "passed, but recording failed: " + r.error().message;
             stage_run.passed = false;
+            recording_failed = true;
         } else {
             stage_run.recorded = true;
             stage_run.note = fmt::format("recorded in {}", o.registry.string());
@@ -519,6 +554,9 @@ int run_validate(const ValidateOptions& o) {
                                             id, o.strictness, fmt::join(known, ", ")));
     }
     const auto alpha_cases = select(plan_cases(plugin, o.strictness, o.seed, true, false, {}));
+    if (partial && o.up_to < ValidationStage::Integrated &&
+        alpha_cases.size() != o.only_cases.size())
+        return fail_run("--case: integration cases do not run with --stage alpha-tested");
     bool passed = alpha_cases.empty() || try_stage(ValidationStage::AlphaTested, alpha_cases, {});
     if (passed && o.up_to >= ValidationStage::Integrated) {
         std::vector<std::string> notes;
@@ -543,10 +581,12 @@ int run_validate(const ValidateOptions& o) {
     print_summary(report);
     std::printf("\n%s %s: %s -> %s; %s\n", plugin.id.c_str(), plugin.version.c_str(),
                 report.stage_before.c_str(), report.stage_after.c_str(),
-                run_failed(report) ? "FAILED" : "all checks passed");
+                run_failed(report)  ? "FAILED"
+                : recording_failed ? "checks passed, but the evidence was not recorded"
+                                   : "all checks passed");
     for (const StageRun& s : report.stages)
         std::printf("  %s: %s\n", s.stage.c_str(), s.note.c_str());
-    return finish(run_failed(report) ? 1 : 0);
+    return finish(run_failed(report) || recording_failed ? 1 : 0);
 }
 
 }  // namespace acetate::harness

@@ -15,6 +15,10 @@
 namespace acetate::harness {
 
 inline constexpr const char* kHarnessVersion = "acetate-harness 0.1.0";
+// The exit status of a child that could not run its case for reasons of the harness or the
+// machine (an unreadable case file, no Vulkan device); any other non-zero status is the
+// plugin's doing and reported as CRASH.
+inline constexpr int kChildSetupFailure = 3;
 
 struct ValidateOptions {
     std::filesystem::path plugin;

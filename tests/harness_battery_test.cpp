@@ -173,16 +173,17 @@ void colour_at_zero(const HarnessRun& run) {
     const std::string reproduce = (*full)["reproduce"].get<std::string>();
     const std::string prefix = "acetate-harness validate ";
     ASSERT_EQ(reproduce.rfind(prefix, 0), 0u) << reproduce;
-    const fs::path again_dir = run.dir / "again";
-    // The reproduce line names the run's registry itself.
-    EXPECT_NE(reproduce.find("--registry " + run.registry.string()), std::string::npos)
-        << reproduce;
+    // The reproduce line is complete: the run's registry, its time limit, and a report folder
+    // of its own beside the full run's (which it must not overwrite).
+    const fs::path again_dir = run.report_dir.string() + "-repro";
+    for (const std::string& part :
+         {"--registry " + run.registry.string(), "--report " + again_dir.string(),
+          "--timeout " + std::to_string(kTimeoutSeconds)})
+        EXPECT_NE(reproduce.find(part), std::string::npos) << part << " in " << reproduce;
     const std::string command =
         "cd " + shell_quote(run.dir.string()) + " && " + test::harness_environment() + " " +
         shell_quote(ACETATE_HARNESS_PATH) + " validate " + reproduce.substr(prefix.size()) +
-        " --no-signoffs --report " +
-        shell_quote(again_dir.string()) + " --jobs 2 --timeout " +
-        std::to_string(kTimeoutSeconds) + " --stage alpha-tested";
+        " --no-signoffs --jobs 2 --stage alpha-tested";
     const test::CommandResult again = test::run_command(command, run.dir);
     EXPECT_EQ(again.code, 1) << again.describe();
     const json report = read_report(again_dir);

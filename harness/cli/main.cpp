@@ -4,9 +4,13 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <signal.h>
+#include <sys/prctl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <thread>
 
@@ -27,15 +31,24 @@ int fail(const std::string& message) {
     return 1;
 }
 
-fs::path self_path() {
-    std::error_code ec;
-    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? fs::path("acetate-harness") : self;
+// Children are started from /proc/self/exe: this very binary, even if the file on disk is
+// rebuilt while a run goes on.
+fs::path self_path() { return "/proc/self/exe"; }
+
+// A child dies with its parent: a harness killed (Ctrl-C, a closed pipe) leaves no case
+// running on without its time limit.
+bool tie_to_parent() {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    return getppid() != 1;  // the parent may already be gone
 }
 
 // A private folder for a describe child's files.
-fs::path scratch_directory() {
-    return fs::temp_directory_path() / fmt::format("acetate-harness-{}", getpid());
+Result<fs::path> scratch_directory() {
+    std::string name = (fs::temp_directory_path() / "acetate-harness-XXXXXX").string();
+    if (!mkdtemp(name.data()))
+        return make_error(ErrorCode::Io, fmt::format("{}: cannot create a temporary folder: {}",
+                                                     name, std::strerror(errno)));
+    return fs::path(name);
 }
 
 std::optional<fs::path> default_signoffs() {
@@ -45,10 +58,11 @@ std::optional<fs::path> default_signoffs() {
 }
 
 Result<PluginInfo> describe(const fs::path& plugin) {
-    const fs::path scratch = scratch_directory();
-    auto info = describe_in_child(self_path(), plugin, scratch, 60);
+    auto scratch = scratch_directory();
+    if (!scratch) return scratch.error();
+    auto info = describe_in_child(self_path(), plugin, *scratch, 60);
     std::error_code ec;
-    fs::remove_all(scratch, ec);
+    fs::remove_all(*scratch, ec);
     return info;
 }
 
@@ -150,6 +164,7 @@ int run_status(const fs::path& registry_file, bool as_json) {
 
 // Child: what the plugin declares, as JSON.
 int run_describe(const fs::path& plugin, const fs::path& out) {
+    if (!tie_to_parent()) return kChildSetupFailure;
     auto info = describe_plugin(plugin);
     if (!info) return fail(info.error().message);
     auto written = write_file_atomically(out, to_json(info.value()).dump(2));
@@ -160,6 +175,11 @@ int run_describe(const fs::path& plugin, const fs::path& out) {
 // Child: one case.
 int run_case_command(const fs::path& plugin_info, const fs::path& case_file, const fs::path& out,
                      const fs::path& report) {
+    if (!tie_to_parent()) return kChildSetupFailure;
+    auto fail = [](const std::string& message) {
+        std::fprintf(stderr, "acetate-harness: %s\n", message.c_str());
+        return kChildSetupFailure;
+    };
     auto read = [](const fs::path& file) -> Result<nlohmann::json> {
         std::ifstream in(file);
         try {
@@ -186,6 +206,9 @@ int run_case_command(const fs::path& plugin_info, const fs::path& case_file, con
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Children are reaped with waitpid: a SIGCHLD ignored by whoever started us must not be
+    // inherited (the kernel would then reap them itself and every case would look hung).
+    signal(SIGCHLD, SIG_DFL);
     CLI::App app{"acetate-harness: validates Acetate effect plugins and keeps the registry of "
                  "their validation stages (docs/harness.md)"};
     app.require_subcommand(1);

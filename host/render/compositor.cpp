@@ -291,7 +291,8 @@ Result<void> Compositor::warm_pipelines() {
         // Clearing every target whole makes the driver commit their memory now: on lavapipe
         // the first touch of a fresh 1080p target otherwise costs the first frame ~20 ms. It
         // also means no target ever holds what the allocation happened to contain: an effect
-        // that reads a target it wrote only in part reads zeros, the same in every process.
+        // that reads a target it wrote only in part reads zeros (or the one pixel the warm-up
+        // below draws), the same in every process.
         const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
         const VkImageSubresourceRange colour{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         std::vector<GpuImage*> targets = effect_targets_.images();
