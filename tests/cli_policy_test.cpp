@@ -395,5 +395,22 @@ TEST_F(HostPolicy, TheFileLoadedIsTheFileChecked) {
     EXPECT_EQ(test::read_file(plugin_file()), "not an ELF file");  // the swap did happen
 }
 
+// Two plugins under a policy in one process: each is the library it names (the dynamic
+// linker knows pinned files by their /proc/self/fd/N name, which must never be reused).
+TEST_F(HostPolicy, TwoPinnedPluginsStayApart) {
+    fs::copy_file(fs::path(ACETATE_PLUGIN_DIR) / "bloom.so", plugins_ / "bloom.so");
+    PluginLoader loader({plugins_});
+    loader.set_admission([](const std::string&, const fs::path&, const fs::path&) -> Result<void> {
+        return {};
+    });
+    auto lighting = loader.load("acetate.lighting");
+    ASSERT_TRUE(lighting) << lighting.error().message;
+    auto bloom = loader.load("acetate.bloom");
+    ASSERT_TRUE(bloom) << bloom.error().message;
+    EXPECT_EQ(lighting.value()->descriptor.id, "acetate.lighting");
+    EXPECT_EQ(bloom.value()->descriptor.id, "acetate.bloom");
+    EXPECT_NE(lighting.value()->api, bloom.value()->api);
+}
+
 }  // namespace
 }  // namespace acetate

@@ -53,7 +53,10 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::admit_and_open(
     auto admitted = admission_(id, file, pinned);
     auto plugin = admitted ? open_library(pinned, file)
                            : Result<std::shared_ptr<LoadedPlugin>>(admitted.error());
-    ::close(fd);  // a loaded library keeps its own mapping
+    // A loaded library's descriptor stays open for the life of the process: the dynamic
+    // linker knows the library by the name "/proc/self/fd/N", and would hand the same library
+    // back for a later dlopen of that name if the number were reused for another plugin.
+    if (!plugin) ::close(fd);
     return plugin;
 }
 
