@@ -18,6 +18,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/sha256.hpp"
+#include "json_fields.hpp"
 #include "plugins/effect_descriptor.hpp"
 
 namespace acetate {
@@ -228,38 +229,9 @@ void remove_stale_temps(const fs::path& file) {
 }
 
 // ---- JSON reading -------------------------------------------------------------------------
-// Field errors are thrown inside this file only and caught in Registry::parse.
+// Field errors (json_fields.hpp) are caught in Registry::parse.
+using namespace json_fields;
 
-struct FieldError {
-    std::string path, what;
-};
-
-[[noreturn]] void fail(const std::string& path, std::string what) {
-    throw FieldError{path, std::move(what)};
-}
-
-std::string field(const std::string& path, std::string_view key) {
-    return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
-}
-
-// `j` is an object with every `required` key, and no key outside `required` and `optional`.
-void expect_object(const json& j, const std::string& path,
-                   const std::vector<std::string_view>& required,
-                   const std::vector<std::string_view>& optional = {}) {
-    if (!j.is_object()) fail(path, fmt::format("must be an object, found {}", j.type_name()));
-    for (const auto& item : j.items()) {
-        const std::string& key = item.key();
-        auto known = [&](const std::vector<std::string_view>& keys) {
-            return std::find(keys.begin(), keys.end(), key) != keys.end();
-        };
-        if (!known(required) && !known(optional))
-            fail(field(path, key),
-                 fmt::format("unknown field (this format has: {}{}{})", fmt::join(required, ", "),
-                             optional.empty() ? "" : ", ", fmt::join(optional, ", ")));
-    }
-    for (std::string_view key : required)
-        if (!j.contains(std::string(key))) fail(field(path, key), "missing");
-}
 
 std::string text(const json& j, const std::string& path, std::string_view key) {
     const json& v = j.at(std::string(key));
@@ -614,7 +586,7 @@ Result<Registry> Registry::parse(std::string_view json_text, std::string_view na
                 fail(path, fmt::format("{} appears twice", plugin_name(e.id, e.version)));
             registry.entries_.push_back(std::move(e));
         }
-    } catch (const FieldError& e) {
+    } catch (const JsonFieldError& e) {
         const std::string where = e.path.empty() ? "" : e.path + ": ";
         return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}{}", name, where, e.what));
     }

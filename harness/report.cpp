@@ -1,5 +1,7 @@
 #include "report.hpp"
 
+#include "json_fields.hpp"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -254,49 +256,12 @@ json to_json(const ValidationReport& report) {
 }
 
 // ---- JSON reading ---------------------------------------------------------------------------
-// Field errors are thrown inside this file only and turned into a Result by
-// case_result_from_json, so the readers below stay straight-line.
+// Field errors (json_fields.hpp) are turned into a Result by case_result_from_json, so the
+// readers below stay straight-line.
 
 namespace {
 
-struct FieldError {
-    std::string path, what;
-};
-
-[[noreturn]] void fail(const std::string& path, std::string what) {
-    throw FieldError{path, std::move(what)};
-}
-
-std::string field(const std::string& path, std::string_view key) {
-    return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
-}
-
-std::string element(const std::string& path, size_t i) {
-    return fmt::format("{}[{}]", path, i);
-}
-
-// `j` is an object with every `required` key and no key outside `required` and `optional`:
-// a misspelt field is an error, not a silently defaulted value.
-void expect_object(const json& j, const std::string& path,
-                   const std::vector<std::string_view>& required,
-                   const std::vector<std::string_view>& optional) {
-    if (!j.is_object()) fail(path, fmt::format("must be an object, found {}", j.type_name()));
-    auto known = [&](const std::string& key) {
-        auto in = [&](const std::vector<std::string_view>& keys) {
-            return std::find(keys.begin(), keys.end(), key) != keys.end();
-        };
-        return in(required) || in(optional);
-    };
-    for (const auto& item : j.items())
-        if (!known(item.key())) {
-            std::vector<std::string_view> all = required;
-            all.insert(all.end(), optional.begin(), optional.end());
-            fail(field(path, item.key()),
-                 fmt::format("unknown field (this format has: {})", fmt::join(all, ", ")));
-        }
-    for (std::string_view key : required)
-        if (!j.contains(key)) fail(field(path, key), "missing");
-}
+using namespace json_fields;
 
 // Each reader leaves `out` at its default when the key is absent.
 void read_text(const json& j, const std::string& path, std::string_view key, std::string& out) {
@@ -440,7 +405,7 @@ CaseResult read_case(const json& j) {
 Result<CaseResult> case_result_from_json(const json& document, std::string_view name) {
     try {
         return read_case(document);
-    } catch (const FieldError& e) {
+    } catch (const JsonFieldError& e) {
         const std::string where = e.path.empty() ? "" : e.path + ": ";
         return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}{}", name, where, e.what));
     } catch (const nlohmann::json::exception& e) {

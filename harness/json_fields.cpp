@@ -1,0 +1,43 @@
+#include "json_fields.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+
+namespace acetate::json_fields {
+
+void fail(const std::string& path, std::string what) {
+    throw JsonFieldError{path, std::move(what)};
+}
+
+std::string field(const std::string& path, std::string_view key) {
+    return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
+}
+
+std::string element(const std::string& path, size_t index) {
+    return fmt::format("{}[{}]", path, index);
+}
+
+void expect_object(const nlohmann::json& j, const std::string& path,
+                   const std::vector<std::string_view>& required,
+                   const std::vector<std::string_view>& optional) {
+    if (!j.is_object()) fail(path, fmt::format("must be an object, found {}", j.type_name()));
+    auto known = [&](const std::string& key) {
+        auto in = [&](const std::vector<std::string_view>& keys) {
+            return std::find(keys.begin(), keys.end(), key) != keys.end();
+        };
+        return in(required) || in(optional);
+    };
+    for (const auto& item : j.items())
+        if (!known(item.key())) {
+            std::vector<std::string_view> all = required;
+            all.insert(all.end(), optional.begin(), optional.end());
+            fail(field(path, item.key()),
+                 fmt::format("unknown field (this format has: {})", fmt::join(all, ", ")));
+        }
+    for (std::string_view key : required)
+        if (!j.contains(key)) fail(field(path, key), "missing");
+}
+
+}  // namespace acetate::json_fields
