@@ -83,8 +83,12 @@ std::unique_ptr<VulkanContext> g_context;
 std::unique_ptr<Renderer> g_renderer;
 std::filesystem::path g_scratch;
 
-VulkanContext& context() { return *g_context; }
-Renderer& renderer() { return *g_renderer; }
+VulkanContext& context() {
+    return *g_context;
+}
+Renderer& renderer() {
+    return *g_renderer;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Scenes built in code
@@ -103,8 +107,10 @@ ImageRGBA make_tile_image(uint32_t w, uint32_t h, uint32_t seed, bool opaque) {
             const uint32_t bx = x / block, by = y / block;
             float a = 1.0f;
             if (!opaque) {
-                if ((bx * 7 + by * 3 + seed) % 6 == 0) a = 0.0f;
-                else a = 0.35f + 0.05f * float((bx * 13 + by * 29 + seed * 5) % 10);
+                if ((bx * 7 + by * 3 + seed) % 6 == 0)
+                    a = 0.0f;
+                else
+                    a = 0.35f + 0.05f * float((bx * 13 + by * 29 + seed * 5) % 10);
             }
             const float shade = 0.5f + 0.5f * float(x) / float(w);
             float* p = image.at(x, y);
@@ -117,8 +123,8 @@ ImageRGBA make_tile_image(uint32_t w, uint32_t h, uint32_t seed, bool opaque) {
 
 // Writes the image once per run (same size, seed and opacity: same file).
 std::filesystem::path tile_file(uint32_t w, uint32_t h, uint32_t seed, bool opaque) {
-    const auto path = g_scratch / fmt::format("tile_{}x{}_{}{}.exr", w, h, seed,
-                                              opaque ? "_opaque" : "");
+    const auto path =
+        g_scratch / fmt::format("tile_{}x{}_{}{}.exr", w, h, seed, opaque ? "_opaque" : "");
     if (!std::filesystem::exists(path))
         must(save_image(path, make_tile_image(w, h, seed, opaque)), "writing a tile image");
     return path;
@@ -224,15 +230,16 @@ double host_frame(Compositor& compositor, uint32_t active, FrameStats* stats = n
 //
 // The same pipelines (the Renderer's HostPipelines, TileToAccum and Output: the very VkPipelines
 // the compositor binds), the same tile images (uploaded by SceneResources from the same files, in
-// the same format), targets of the same size, format and usage. One command buffer and fence created once and re-recorded every frame; fixed barriers
-// (no layout tracking); no planning, no stats. Two shapes:
+// the same format), targets of the same size, format and usage. One command buffer and fence
+// created once and re-recorded every frame; fixed barriers (no layout tracking); no planning, no
+// stats. Two shapes:
 //   one_pass = true:  clear, one rendering pass over the accumulation with every tile draw (the
 //                     scissor set per floor), output pass. The minimum a hand-written renderer
 //                     would issue.
 //   one_pass = false: clear, one rendering pass per drawn floor with a barrier before each (the
 //                     pass structure Compositor records), output pass.
 class RawRenderer {
-public:
+  public:
     RawRenderer(const SceneDesc& scene, const FramePlan& plan, VkFormat format)
         : scene_(scene), plan_(plan), format_(format) {
         VulkanContext& ctx = context();
@@ -249,14 +256,15 @@ public:
         accumulation_ = must(GpuImage::create(ctx, "raw.accumulation", scene.width, scene.height,
                                               format, usage, true),
                              "raw accumulation");
-        output_ = must(GpuImage::create(ctx, "raw.output", scene.width, scene.height, format,
-                                        usage, true),
-                       "raw output");
+        output_ = must(
+            GpuImage::create(ctx, "raw.output", scene.width, scene.height, format, usage, true),
+            "raw output");
         // Every frame leaves the output as a colour attachment; tell its GpuImage once, so
         // read_output() (read_back_image) starts from the right layout.
         must(ctx.submit_and_wait([&](VkCommandBuffer cmd) {
             output_.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-        }), "raw output layout");
+        }),
+             "raw output layout");
         VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pool.queueFamilyIndex = ctx.queue_family();
         vk_check(vkCreateCommandPool(ctx.device(), &pool, nullptr, &pool_), "vkCreateCommandPool");
@@ -306,7 +314,7 @@ public:
         return must(read_back_image(context(), output_), "reading the raw output");
     }
 
-private:
+  private:
     // Same full barrier as GpuImage::transition.
     void barrier(VkImage image, VkImageLayout from, VkImageLayout to) {
         VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
@@ -358,14 +366,14 @@ private:
             writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
             writes[i].pImageInfo = &images[i];
         }
-        context().push_descriptor_fn()(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                       pipelines_->layout(), 0, count, writes);
+        context().push_descriptor_fn()(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_->layout(),
+                                       0, count, writes);
     }
 
     void push(const StagePushConstants& pc) {
         vkCmdPushConstants(cmd_, pipelines_->layout(),
-                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof(pc), &pc);
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
+                           &pc);
     }
 
     void draw_floor(const FloorStep& step) {
@@ -373,8 +381,8 @@ private:
         vkCmdSetScissor(cmd_, 0, 1, &scissor);
         for (const LoadedTile& tile : resources_->floors()[step.floor].tiles) {
             if (intersect(tile.pixels, step.scissor).empty()) continue;
-            push_images(tile.texture->view(), tile.texture->view(),
-                        pipelines_->linear_sampler(), 1);
+            push_images(tile.texture->view(), tile.texture->view(), pipelines_->linear_sampler(),
+                        1);
             StagePushConstants pc;
             pc.rect[0] = float(tile.rect.x);
             pc.rect[1] = float(tile.rect.y);
@@ -537,7 +545,8 @@ void bm_overhead(benchmark::State& state, std::string scene_name,
     const ImageRGBA raw_image = raw.read_output();
     double max_diff = 0;
     for (size_t i = 0; i < host_image.pixels.size(); ++i)
-        max_diff = std::max(max_diff, double(std::fabs(host_image.pixels[i] - raw_image.pixels[i])));
+        max_diff =
+            std::max(max_diff, double(std::fabs(host_image.pixels[i] - raw_image.pixels[i])));
     if (max_diff > 1e-3)
         die(fmt::format("raw baseline draws a different image (max difference {})", max_diff));
     std::vector<double> host_ms, raw_ms, raw_passes_ms;
@@ -547,17 +556,24 @@ void bm_overhead(benchmark::State& state, std::string scene_name,
         double host = 0;
         for (uint64_t k = 0; k < 3; ++k) {
             switch ((round + k) % 3) {
-                case 0: host = host_frame(*compositor, scene.active_floor, &stats); break;
-                case 1: raw_ms.push_back(raw.frame(true)); break;
-                case 2: raw_passes_ms.push_back(raw.frame(false)); break;
+                case 0:
+                    host = host_frame(*compositor, scene.active_floor, &stats);
+                    break;
+                case 1:
+                    raw_ms.push_back(raw.frame(true));
+                    break;
+                case 2:
+                    raw_passes_ms.push_back(raw.frame(false));
+                    break;
             }
         }
         ++round;
         host_ms.push_back(host);
         state.SetIterationTime(host / 1000.0);
     }
-    OverheadRow row{scene_name, host_ms.size(), median(host_ms), median(raw_ms),
-                    median(raw_passes_ms), stats.passes, stats.pixels_shaded};
+    OverheadRow row{scene_name,         host_ms.size(),        median(host_ms),
+                    median(raw_ms),     median(raw_passes_ms), stats.passes,
+                    stats.pixels_shaded};
     state.counters["host_ms"] = row.host_ms;
     state.counters["raw_ms"] = row.raw_ms;
     state.counters["raw_passes_ms"] = row.raw_passes_ms;
@@ -601,8 +617,8 @@ void bm_optimisations(benchmark::State& state) {
         double on_ms = 0;
         for (size_t k = 0; k < configs.size(); ++k) {
             const size_t i = (round + k) % configs.size();
-            const double ms = host_frame(*configs[i].compositor, scene.active_floor,
-                                         &configs[i].stats);
+            const double ms =
+                host_frame(*configs[i].compositor, scene.active_floor, &configs[i].stats);
             configs[i].ms.push_back(ms);
             if (i == 0) on_ms = ms;
         }
@@ -627,9 +643,10 @@ void print_summary() {
     std::printf("\n## Summary (per-frame medians over all timed frames)\n");
     if (!g_frame_order.empty()) {
         std::printf("\n### Frame time (Compositor::render, default options)\n\n");
-        std::printf("| benchmark | frames | median ms | min ms | max ms | passes | pixels shaded "
-                    "| Mpx/s (median) | load ms |\n"
-                    "|---|---|---|---|---|---|---|---|---|\n");
+        std::printf(
+            "| benchmark | frames | median ms | min ms | max ms | passes | pixels shaded "
+            "| Mpx/s (median) | load ms |\n"
+            "|---|---|---|---|---|---|---|---|---|\n");
         for (const std::string& name : g_frame_order) {
             const FrameRow& row = g_frame_rows[name];
             if (row.ms.empty()) continue;
@@ -644,9 +661,10 @@ void print_summary() {
     }
     if (!g_overhead_rows.empty()) {
         std::printf("\n### Host overhead: Compositor::render vs raw recording (interleaved)\n\n");
-        std::printf("| scene | frames each | passes | pixels shaded | host ms | raw ms (one pass) "
-                    "| raw ms (pass per floor) | host/raw | host/raw per floor |\n"
-                    "|---|---|---|---|---|---|---|---|---|\n");
+        std::printf(
+            "| scene | frames each | passes | pixels shaded | host ms | raw ms (one pass) "
+            "| raw ms (pass per floor) | host/raw | host/raw per floor |\n"
+            "|---|---|---|---|---|---|---|---|---|\n");
         for (const OverheadRow& r : g_overhead_rows)
             std::printf("| %s | %zu | %u | %llu | %.2f | %.2f | %.2f | %.3f | %.3f |\n",
                         r.scene.c_str(), r.frames, r.passes, (unsigned long long)r.pixels_shaded,
@@ -656,12 +674,13 @@ void print_summary() {
     if (!g_optim_rows.empty()) {
         std::printf("\n### Optimisations on vs off (tenth scene, interleaved)\n\n");
         const OptimRow& on = g_optim_rows.front();
-        std::printf("| plan options | frames | median ms | vs all on | passes | pixels shaded | "
-                    "floor paths (0..3) |\n|---|---|---|---|---|---|---|\n");
+        std::printf(
+            "| plan options | frames | median ms | vs all on | passes | pixels shaded | "
+            "floor paths (0..3) |\n|---|---|---|---|---|---|---|\n");
         for (const OptimRow& r : g_optim_rows)
             std::printf("| %s | %zu | %.2f | %.2fx | %u | %llu | %s |\n", r.config.c_str(),
-                        r.frames, r.ms, r.ms / on.ms, r.passes,
-                        (unsigned long long)r.pixels_shaded, r.paths.c_str());
+                        r.frames, r.ms, r.ms / on.ms, r.passes, (unsigned long long)r.pixels_shaded,
+                        r.paths.c_str());
     }
     std::fflush(stdout);
 }
@@ -696,7 +715,8 @@ int main(int argc, char** argv) {
 
     // a. Frame time vs floor count (1080p) and vs canvas size (4 floors); plus one scaled case.
     std::vector<std::pair<std::string, FloorScene>> frame_cases;
-    for (uint32_t n : {1u, 2u, 4u, 8u, 16u}) frame_cases.push_back({"floors", {1920, 1080, n, false}});
+    for (uint32_t n : {1u, 2u, 4u, 8u, 16u})
+        frame_cases.push_back({"floors", {1920, 1080, n, false}});
     for (auto [w, h] : {std::pair{1280u, 720u}, {1920u, 1080u}, {3840u, 2160u}})
         frame_cases.push_back({"canvas", {w, h, 4, false}});
     frame_cases.push_back({"scaled", {1920, 1080, 4, true}});

@@ -1,9 +1,8 @@
 #include "case_runner.hpp"
 
+#include <Imath/half.h>
 #include <fmt/format.h>
 #include <unistd.h>
-
-#include <Imath/half.h>
 
 #include <cmath>
 #include <fstream>
@@ -139,7 +138,7 @@ Result<Capture> capture_global(Compositor& comp, uint32_t top, float time) {
 // ---- results ----------------------------------------------------------------------------
 
 class CaseWriter {
-public:
+  public:
     explicit CaseWriter(const CaseContext& c) : c_(c) {
         result.id = c.spec.id;
         result.description = c.spec.description;
@@ -156,8 +155,7 @@ public:
     void case_picture(const std::string& role, const ImageRGBA& image) {
         if (auto path = picture(role, image); !path.empty()) result.images[role] = path;
     }
-    void add(CheckResult check,
-             const std::map<int64_t, ImageRGBA>* heat_maps = nullptr) {
+    void add(CheckResult check, const std::map<int64_t, ImageRGBA>* heat_maps = nullptr) {
         if (heat_maps)
             for (const auto& [floor, heat] : *heat_maps) {
                 const std::string role =
@@ -186,9 +184,9 @@ public:
         } else if (messages) {
             validation.verdict = Verdict::Fail;
             validation.violations = messages;
-            validation.message = fmt::format(
-                "{} validation message{} while the plugin ran (the log has them)", messages,
-                messages == 1 ? "" : "s");
+            validation.message =
+                fmt::format("{} validation message{} while the plugin ran (the log has them)",
+                            messages, messages == 1 ? "" : "s");
         } else {
             validation.message = "no validation message while the plugin ran";
         }
@@ -199,7 +197,7 @@ public:
     }
     CaseResult result;
 
-private:
+  private:
     const CaseContext& c_;
 };
 
@@ -222,7 +220,8 @@ uint64_t resident_bytes() {
 // failed, a shader did not compile) is the case's "load" failure: it is recorded and the
 // result is null, so the case stops there. Environment failures come back as errors.
 Result<std::unique_ptr<Compositor>> load_layout(const CaseContext& c, Session& s, CaseWriter& w,
-                                                const SceneLayout& layout, const std::string& name) {
+                                                const SceneLayout& layout,
+                                                const std::string& name) {
     auto scene = write_scene(layout, c.case_directory, name);
     if (!scene) return scene.error();
     auto comp = load(s, scene.value());
@@ -266,9 +265,9 @@ Result<void> run_contract(const CaseContext& c, Session& s, CaseWriter& w) {
     if (!composite) return composite.error();
     w.case_picture("composite", *composite);
     std::map<std::string, std::map<int64_t, ImageRGBA>> heat;
-    w.add_all(check_contract(floors, c.plugin.is_expanding(), &heat,
-                             {{-1, nullptr, &composite.value()}}),
-              heat);
+    w.add_all(
+        check_contract(floors, c.plugin.is_expanding(), &heat, {{-1, nullptr, &composite.value()}}),
+        heat);
     return {};
 }
 
@@ -322,9 +321,7 @@ Result<void> run_state_isolation(const CaseContext& c, Session& s, CaseWriter& w
                            "floors 0, 1, 0 gave floor 0 twice the same; each floor alone and a "
                            "second load gave the same images");
     auto expect_same = [&](const ImageRGBA& a, const ImageRGBA& b, int64_t floor,
-                           const std::string& why) {
-        record_differences(a, b, floor, why, state);
-    };
+                           const std::string& why) { record_differences(a, b, floor, why, state); };
     auto a0 = frame(**comp, 0);
     if (!a0) return a0.error();
     auto b1 = frame(**comp, 1);
@@ -374,8 +371,8 @@ Result<void> run_state_isolation(const CaseContext& c, Session& s, CaseWriter& w
         if (stats->targets_allocated || stats->images_loaded || stats->shaders_compiled ||
             stats->pipelines_created) {
             memory.verdict = Verdict::Fail;
-            memory.message = fmt::format("switch {} allocated, loaded or compiled during a frame",
-                                         i);
+            memory.message =
+                fmt::format("switch {} allocated, loaded or compiled during a frame", i);
         }
     }
     const int64_t growth = int64_t(resident_bytes()) - int64_t(resident_warm);
@@ -487,7 +484,8 @@ Result<void> run_disconnected(const CaseContext& c, Session& s, CaseWriter& w) {
             "maximum): not connected to the shader?",
             disconnected.size() == 1 ? "" : "s", fmt::join(disconnected, ", "), c.spec.width,
             c.spec.height,
-            c.plugin.masks.empty() ? "" : fmt::format(" and masks {}", fmt::join(c.plugin.masks, ", ")));
+            c.plugin.masks.empty() ? ""
+                                   : fmt::format(" and masks {}", fmt::join(c.plugin.masks, ", ")));
     }
     w.add(check);
     return {};
@@ -511,15 +509,16 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
     layout.floor_effects.resize(spec.floors);
     std::vector<bool> expanding(spec.floors, false), under_test_floor(spec.floors, false);
     for (uint32_t f = 0; f < spec.floors; ++f)
-        layout.floors.push_back(
-            make_floor_input(spec.pattern, spec.width, spec.height, f, spec.floors, spec.seed,
-                             c.plugin.masks));
+        layout.floors.push_back(make_floor_input(spec.pattern, spec.width, spec.height, f,
+                                                 spec.floors, spec.seed, c.plugin.masks));
     // The plugin under test on the odd floors, floor companions round-robin on the even ones.
     size_t next_companion = 0;
     std::vector<const CompanionPlugin*> floor_companions;
     for (const CompanionPlugin& other : spec.companions) {
-        if (other.scope == "global") layout.global_effects.push_back({other.id, json::object(), ""});
-        else floor_companions.push_back(&other);
+        if (other.scope == "global")
+            layout.global_effects.push_back({other.id, json::object(), ""});
+        else
+            floor_companions.push_back(&other);
     }
     for (uint32_t f = 0; f < spec.floors; ++f) {
         if (!c.plugin.is_global() && f % 2 == 1) {
@@ -527,7 +526,8 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
             under_test_floor[f] = true;
             expanding[f] = c.plugin.is_expanding();
         } else if (!floor_companions.empty()) {
-            const CompanionPlugin* other = floor_companions[next_companion++ % floor_companions.size()];
+            const CompanionPlugin* other =
+                floor_companions[next_companion++ % floor_companions.size()];
             layout.floor_effects[f].push_back({other->id, json::object(), ""});
         }
     }
@@ -564,7 +564,8 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
         checked.push_back({-1, &global->input, &global->output});
     }
     for (uint32_t f = 0; f < spec.floors; ++f)
-        if (under_test_floor[f]) checked.push_back({int64_t(f), &captures[f].input, &captures[f].output});
+        if (under_test_floor[f])
+            checked.push_back({int64_t(f), &captures[f].input, &captures[f].output});
     std::map<std::string, std::map<int64_t, ImageRGBA>> heat;
     w.add_all(check_contract(checked, c.plugin.is_expanding(), &heat), heat);
 
@@ -600,8 +601,9 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
         for (size_t i = 0; i < pixels; ++i) {
             const float* in = &captures[f].input.pixels[i * 4];
             const float* out = &captures[f].output.pixels[i * 4];
-            const bool drawn = expanding[f] ? (out[0] != 0 || out[1] != 0 || out[2] != 0 || out[3] != 0)
-                                            : in[3] > 0.0f;
+            const bool drawn = expanding[f]
+                                   ? (out[0] != 0 || out[1] != 0 || out[2] != 0 || out[3] != 0)
+                                   : in[3] > 0.0f;
             if (!drawn) continue;
             for (int ch = 0; ch < 4; ++ch) {
                 double& v = exact[i * 4 + ch];
@@ -636,8 +638,10 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
                     (std::isinf(g) || std::abs(g) >= kHalfMax * (1 - spec.floors * kHalfRelative));
                 if (saturated && std::signbit(e) == std::signbit(g))
                     steps = 0;
-                else if (std::isfinite(g)) steps = std::abs(e - g) / rounding;
-                else steps = 1e30;  // NaN, or infinity where the exact value is finite
+                else if (std::isfinite(g))
+                    steps = std::abs(e - g) / rounding;
+                else
+                    steps = 1e30;  // NaN, or infinity where the exact value is finite
                 pixel_steps = std::max(pixel_steps, steps);
             }
             if (pixel_steps > 0.5 * spec.floors) ++warn_pixels;
@@ -674,7 +678,9 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
 
 }  // namespace
 
-fs::path case_result_file(const fs::path& case_directory) { return case_directory / "result.json"; }
+fs::path case_result_file(const fs::path& case_directory) {
+    return case_directory / "result.json";
+}
 
 Result<CaseResult> run_case(const CaseContext& c) {
     std::error_code ec;
@@ -687,12 +693,24 @@ Result<CaseResult> run_case(const CaseContext& c) {
     CaseWriter writer(c);
     Result<void> ran;
     switch (c.spec.kind) {
-        case CaseKind::Contract: ran = run_contract(c, *session, writer); break;
-        case CaseKind::Determinism: ran = run_determinism(c, *session, writer); break;
-        case CaseKind::StateIsolation: ran = run_state_isolation(c, *session, writer); break;
-        case CaseKind::FloorIsolation: ran = run_floor_isolation(c, *session, writer); break;
-        case CaseKind::Disconnected: ran = run_disconnected(c, *session, writer); break;
-        case CaseKind::Integration: ran = run_integration(c, *session, writer); break;
+        case CaseKind::Contract:
+            ran = run_contract(c, *session, writer);
+            break;
+        case CaseKind::Determinism:
+            ran = run_determinism(c, *session, writer);
+            break;
+        case CaseKind::StateIsolation:
+            ran = run_state_isolation(c, *session, writer);
+            break;
+        case CaseKind::FloorIsolation:
+            ran = run_floor_isolation(c, *session, writer);
+            break;
+        case CaseKind::Disconnected:
+            ran = run_disconnected(c, *session, writer);
+            break;
+        case CaseKind::Integration:
+            ran = run_integration(c, *session, writer);
+            break;
     }
     if (!ran) return ran.error();
     // Close Vulkan first: messages at teardown (objects left alive) count too.

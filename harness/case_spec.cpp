@@ -11,7 +11,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr const char* kKindNames[] = {"contract",     "determinism",  "state-isolation",
+constexpr const char* kKindNames[] = {"contract",        "determinism",  "state-isolation",
                                       "floor-isolation", "disconnected", "integration"};
 constexpr const char* kPatternNames[] = {"standard", "alpha-ramp", "hdr", "empty", "opaque"};
 
@@ -46,19 +46,31 @@ json all_params_at(const PluginInfo& plugin, bool at_max) {
 
 }  // namespace
 
-const char* to_string(CaseKind kind) { return kKindNames[int(kind)]; }
-const char* to_string(Pattern pattern) { return kPatternNames[int(pattern)]; }
+const char* to_string(CaseKind kind) {
+    return kKindNames[int(kind)];
+}
+const char* to_string(Pattern pattern) {
+    return kPatternNames[int(pattern)];
+}
 
 json to_json(const PluginInfo& info) {
     json params = json::array();
     for (const ParamInfo& p : info.params)
-        params.push_back({{"name", p.name}, {"type", p.type}, {"default", p.default_value},
-                          {"min", p.min_value}, {"max", p.max_value}});
-    return {{"file", info.file},           {"id", info.id},
-            {"version", info.version},     {"display_name", info.display_name},
-            {"scope", info.scope},         {"coverage", info.coverage},
-            {"masks", info.masks},         {"params", params},
-            {"presets", info.presets},     {"source_digest", info.source_digest},
+        params.push_back({{"name", p.name},
+                          {"type", p.type},
+                          {"default", p.default_value},
+                          {"min", p.min_value},
+                          {"max", p.max_value}});
+    return {{"file", info.file},
+            {"id", info.id},
+            {"version", info.version},
+            {"display_name", info.display_name},
+            {"scope", info.scope},
+            {"coverage", info.coverage},
+            {"masks", info.masks},
+            {"params", params},
+            {"presets", info.presets},
+            {"source_digest", info.source_digest},
             {"binary_sha256", info.binary_sha256}};
 }
 
@@ -89,12 +101,18 @@ json to_json(const CaseSpec& s) {
     json companions = json::array();
     for (const CompanionPlugin& c : s.companions)
         companions.push_back({{"id", c.id}, {"file", c.file}, {"scope", c.scope}});
-    return {{"id", s.id},           {"description", s.description},
-            {"kind", to_string(s.kind)}, {"seed", s.seed},
-            {"width", s.width},     {"height", s.height},
-            {"pattern", to_string(s.pattern)}, {"floors", s.floors},
-            {"params", s.params},   {"preset", s.preset},
-            {"time", s.time},       {"switches", s.switches},
+    return {{"id", s.id},
+            {"description", s.description},
+            {"kind", to_string(s.kind)},
+            {"seed", s.seed},
+            {"width", s.width},
+            {"height", s.height},
+            {"pattern", to_string(s.pattern)},
+            {"floors", s.floors},
+            {"params", s.params},
+            {"preset", s.preset},
+            {"time", s.time},
+            {"switches", s.switches},
             {"companions", companions}};
 }
 
@@ -158,8 +176,8 @@ std::vector<CaseSpec> plan_cases(const PluginInfo& plugin, int strictness, uint6
     };
 
     if (alpha_stage) {
-        add(contract("contract/standard", "one floor: opaque, partial and transparent areas",
-                     256, 160));
+        add(contract("contract/standard", "one floor: opaque, partial and transparent areas", 256,
+                     160));
         add(contract("contract/three-floors",
                      "three overlapping floors, each with its own coverage and lights", 256, 160,
                      Pattern::Standard, 3));
@@ -169,12 +187,12 @@ std::vector<CaseSpec> plan_cases(const PluginInfo& plugin, int strictness, uint6
         if (strictness >= 7) add(contract("sizes/tall", "a one-pixel-wide strip, 1x517", 1, 517));
         const uint32_t large_w = strictness <= 3 ? 1024 : strictness <= 7 ? 1920 : 4096;
         const uint32_t large_h = strictness <= 3 ? 768 : strictness <= 7 ? 1080 : 2304;
-        add(contract(fmt::format("sizes/large"), fmt::format("a large canvas, {}x{}", large_w, large_h),
-                     large_w, large_h));
+        add(contract(fmt::format("sizes/large"),
+                     fmt::format("a large canvas, {}x{}", large_w, large_h), large_w, large_h));
         add(contract("inputs/hdr", "HDR values up to the half-float maximum 65504", 128, 96,
                      Pattern::Hdr));
-        add(contract("inputs/alpha-ramp", "alpha from 1 down to 1/65535 across the canvas",
-                     256, 64, Pattern::AlphaRamp));
+        add(contract("inputs/alpha-ramp", "alpha from 1 down to 1/65535 across the canvas", 256, 64,
+                     Pattern::AlphaRamp));
         add(contract("inputs/empty", "a floor whose tile is fully transparent", 96, 64,
                      Pattern::Empty));
         add(contract("inputs/opaque", "a floor that is opaque everywhere", 96, 64,
@@ -195,8 +213,9 @@ std::vector<CaseSpec> plan_cases(const PluginInfo& plugin, int strictness, uint6
         }
         const int random_cases = plugin.params.empty() ? 0 : std::max(1, strictness);
         for (int i = 0; i < random_cases; ++i) {
-            CaseSpec s = contract(fmt::format("params/random-{}", i + 1),
-                                  "random parameters within their ranges, at a random time", 128, 96);
+            CaseSpec s =
+                contract(fmt::format("params/random-{}", i + 1),
+                         "random parameters within their ranges, at a random time", 128, 96);
             s.seed = case_seed(run_seed, s.id);
             std::mt19937_64 rng(s.seed);
             for (const ParamInfo& p : plugin.params) s.params[p.name] = random_value(p, rng);

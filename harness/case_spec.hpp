@@ -4,10 +4,9 @@
 // on (CaseSpec), chosen by strictness and seeded so a failing case can be re-run exactly.
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/result.hpp"
 
@@ -59,15 +58,15 @@ struct CaseSpec {
     std::string id;           // "sizes/1x1"
     std::string description;  // one line for people
     CaseKind kind = CaseKind::Contract;
-    uint64_t seed = 0;        // the case's own seed: inputs, lights, random parameters, time
+    uint64_t seed = 0;  // the case's own seed: inputs, lights, random parameters, time
     uint32_t width = 256, height = 160;
     Pattern pattern = Pattern::Standard;
-    uint32_t floors = 1;      // the plugin runs on every floor (a floor effect) or once on the
-                              // composite (a global one), unless the kind says otherwise
+    uint32_t floors = 1;  // the plugin runs on every floor (a floor effect) or once on the
+                          // composite (a global one), unless the kind says otherwise
     nlohmann::json params = nlohmann::json::object();  // scene params of the plugin under test
     std::string preset;
     float time = 0;
-    uint32_t switches = 0;    // StateIsolation: floor switches for the memory check
+    uint32_t switches = 0;                    // StateIsolation: floor switches for the memory check
     std::vector<CompanionPlugin> companions;  // Integration
 };
 nlohmann::json to_json(const CaseSpec& spec);

@@ -55,8 +55,8 @@ ChildOutcome finished(int status, double seconds) {
     } else if (WIFSIGNALED(status)) {
         outcome.signal = WTERMSIG(status);
         const char* name = sigabbrev_np(outcome.signal);
-        outcome.message = fmt::format("killed by SIG{} ({})", name ? name : "?",
-                                      strsignal(outcome.signal));
+        outcome.message =
+            fmt::format("killed by SIG{} ({})", name ? name : "?", strsignal(outcome.signal));
     }
     return outcome;
 }
@@ -72,15 +72,16 @@ void run_children(const std::vector<ChildJob>& jobs, unsigned parallel,
         while (next < jobs.size() && running.size() < parallel) {
             pid_t pid = 0;
             ChildOutcome outcome = spawn(jobs[next], pid);
-            if (!outcome.started) done(next, outcome);
-            else running.push_back({next, pid, Clock::now()});
+            if (!outcome.started)
+                done(next, outcome);
+            else
+                running.push_back({next, pid, Clock::now()});
             ++next;
         }
         bool reaped = false;
         for (size_t i = 0; i < running.size();) {
             Running& r = running[i];
-            const double seconds =
-                std::chrono::duration<double>(Clock::now() - r.start).count();
+            const double seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
             int status = 0;
             if (waitpid(r.pid, &status, WNOHANG) == r.pid) {
                 const size_t index = r.index;
@@ -96,9 +97,9 @@ void run_children(const std::vector<ChildJob>& jobs, unsigned parallel,
                 outcome.started = true;
                 outcome.timed_out = true;
                 outcome.seconds = seconds;
-                outcome.message = fmt::format(
-                    "no result after {:.0f} s: killed",
-                    std::chrono::duration<double>(jobs[r.index].timeout).count());
+                outcome.message =
+                    fmt::format("no result after {:.0f} s: killed",
+                                std::chrono::duration<double>(jobs[r.index].timeout).count());
                 const size_t index = r.index;
                 running.erase(running.begin() + i);
                 done(index, outcome);

@@ -23,7 +23,7 @@ struct ChildOutcome {
     int exit_code = -1;      // when it exited
     int signal = 0;          // when a signal ended it (other than our kill at the limit)
     double seconds = 0;
-    std::string message;     // "exit 1", "killed by SIGSEGV", "no result after 60 s", ...
+    std::string message;  // "exit 1", "killed by SIGSEGV", "no result after 60 s", ...
 };
 
 // Runs `jobs`, at most `parallel` at a time, calling `done(index, outcome)` as each finishes

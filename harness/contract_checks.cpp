@@ -11,8 +11,7 @@ namespace acetate::harness {
 namespace {
 
 bool all_finite(const float* p) {
-    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) &&
-           std::isfinite(p[3]);
+    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(p[3]);
 }
 
 std::string fmt_float(float v) {
@@ -133,7 +132,8 @@ void check_finite(const FloorImages& floor, CheckAccumulator& out) {
     for (uint32_t y = 0; y < image.height; ++y)
         for (uint32_t x = 0; x < image.width; ++x)
             if (!all_finite(image.at(x, y)))
-                out.violation(floor, x, y, fmt::format("non-finite value {}", format_rgba(image.at(x, y))));
+                out.violation(floor, x, y,
+                              fmt::format("non-finite value {}", format_rgba(image.at(x, y))));
 }
 
 std::vector<CheckResult> check_contract(
@@ -142,11 +142,10 @@ std::vector<CheckResult> check_contract(
     const std::vector<FloorImages>& finite_only) {
     CheckAccumulator premultiplied("premultiplied",
                                    "rgb within 2^-24 of 0 wherever alpha is below 2^-24");
-    CheckAccumulator coverage("coverage", expanding
-                                              ? "alpha never dropped and stayed within 1 "
-                                                "(declared coverage-expanding)"
-                                              : "alpha kept bit for bit (declared "
-                                                "coverage-preserving)");
+    CheckAccumulator coverage("coverage", expanding ? "alpha never dropped and stayed within 1 "
+                                                      "(declared coverage-expanding)"
+                                                    : "alpha kept bit for bit (declared "
+                                                      "coverage-preserving)");
     CheckAccumulator leak("alpha-leak", "opaque input stayed opaque");
     CheckAccumulator finite("finite", "no NaN or infinity in any channel");
     for (const FloorImages& floor : floors) {
@@ -180,7 +179,8 @@ ImageDifference compare_exact(const ImageRGBA& a, const ImageRGBA& b, int64_t fl
                 v.floor = floor;
                 std::memcpy(v.input.data(), a.at(x, y), sizeof(float) * 4);
                 std::memcpy(v.output.data(), b.at(x, y), sizeof(float) * 4);
-                v.what = fmt::format("{} then {}", format_rgba(a.at(x, y)), format_rgba(b.at(x, y)));
+                v.what =
+                    fmt::format("{} then {}", format_rgba(a.at(x, y)), format_rgba(b.at(x, y)));
                 diff.examples.push_back(std::move(v));
             }
         }

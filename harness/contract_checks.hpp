@@ -28,14 +28,14 @@ struct FloorImages {
 
 // Accumulates one check over several floors into a CheckResult and a heat map per floor.
 class CheckAccumulator {
-public:
+  public:
     CheckAccumulator(std::string check, std::string passing_message);
     void violation(const FloorImages& floor, uint32_t x, uint32_t y, std::string what);
     CheckResult finish(Verdict failing = Verdict::Fail);
     // Red where a pixel failed, over the input's alpha in grey, per floor that had any.
     const std::map<int64_t, ImageRGBA>& heat_maps() const { return heat_; }
 
-private:
+  private:
     CheckResult result_;
     std::string passing_message_;
     std::map<int64_t, ImageRGBA> heat_;

@@ -3,11 +3,10 @@
 // the field: a reader throws JsonFieldError with the field's path ("plugins[2].review.at")
 // and catches it once, at its entry point, where it becomes a Result. Nothing else throws it.
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace acetate::json_fields {
 

@@ -141,8 +141,8 @@ std::string first_missing_record(const RegistryEntry* e, std::string_view binary
 
 // The entry of `id` (any id when empty) recorded with this binary that holds the highest
 // stage; null when none was.
-const RegistryEntry* best_for_binary(const std::vector<RegistryEntry>& entries,
-                                     std::string_view id, std::string_view binary) {
+const RegistryEntry* best_for_binary(const std::vector<RegistryEntry>& entries, std::string_view id,
+                                     std::string_view binary) {
     const RegistryEntry* best = nullptr;
     for (const RegistryEntry& e : entries)
         if ((id.empty() || e.id == id) && e.binary_sha256 == binary &&
@@ -231,7 +231,6 @@ void remove_stale_temps(const fs::path& file) {
 // ---- JSON reading -------------------------------------------------------------------------
 // Field errors (json_fields.hpp) are caught in Registry::parse.
 using namespace json_fields;
-
 
 std::string text(const json& j, const std::string& path, std::string_view key) {
     const json& v = j.at(std::string(key));

@@ -1,7 +1,5 @@
 #include "report.hpp"
 
-#include "json_fields.hpp"
-
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -14,6 +12,7 @@
 #include <set>
 
 #include "core/atomic_file.hpp"
+#include "json_fields.hpp"
 
 namespace acetate::harness {
 namespace {

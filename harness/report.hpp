@@ -10,12 +10,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/result.hpp"
 
@@ -40,10 +39,10 @@ struct Violation {
 
 // One check's verdict in one case.
 struct CheckResult {
-    std::string check;      // "premultiplied", "coverage", ...
+    std::string check;  // "premultiplied", "coverage", ...
     Verdict verdict = Verdict::Pass;
-    std::string message;    // one line: what was checked and the threshold, or what failed
-    uint64_t violations = 0;          // offending pixels (all of them, not only the examples)
+    std::string message;      // one line: what was checked and the threshold, or what failed
+    uint64_t violations = 0;  // offending pixels (all of them, not only the examples)
     std::vector<Violation> examples;  // the first few, for the report
     // Images for the report, relative to the report directory, by role: "heatmap.floor0", ...
     std::map<std::string, std::string> images;
@@ -51,27 +50,27 @@ struct CheckResult {
 
 // One case: a child process that rendered one scenario and evaluated its checks.
 struct CaseResult {
-    std::string id;           // "sizes/1x1", "params/random-3", ...; unique in a run
-    std::string description;  // one line for people
-    uint64_t seed = 0;        // reproduces the case's inputs and parameters
+    std::string id;                   // "sizes/1x1", "params/random-3", ...; unique in a run
+    std::string description;          // one line for people
+    uint64_t seed = 0;                // reproduces the case's inputs and parameters
     Verdict verdict = Verdict::Pass;  // the worst of its checks, or CRASH / TIMEOUT
     std::string message;              // for CRASH / TIMEOUT: the signal or the time limit
     std::vector<CheckResult> checks;
     // Input and output pictures, relative to the report directory, by role: "input.floor0",
     // "output.floor0", "composite", ...
     std::map<std::string, std::string> images;
-    double seconds = 0;          // wall time of the child
-    std::string reproduce;       // the command line that re-runs exactly this case
-    std::string log;             // the child's stderr, last lines
-    std::string output_digest;   // SHA-256 of the outputs it read back (determinism)
+    double seconds = 0;         // wall time of the child
+    std::string reproduce;      // the command line that re-runs exactly this case
+    std::string log;            // the child's stderr, last lines
+    std::string output_digest;  // SHA-256 of the outputs it read back (determinism)
 };
 
 // An automated stage the run tried, and what came of it.
 struct StageRun {
-    std::string stage;        // "ALPHA_TESTED" / "INTEGRATED"
-    bool passed = false;      // no failing verdict
-    bool recorded = false;    // evidence went into the registry
-    std::string note;         // why it was not recorded, or where
+    std::string stage;      // "ALPHA_TESTED" / "INTEGRATED"
+    bool passed = false;    // no failing verdict
+    bool recorded = false;  // evidence went into the registry
+    std::string note;       // why it was not recorded, or where
 };
 
 // One sign-off or evidence line of the plugin's history in the registry.
@@ -82,15 +81,15 @@ struct HistoryLine {
 
 struct ValidationReport {
     std::string harness_version;
-    std::string plugin_file;     // as given
+    std::string plugin_file;  // as given
     std::string id, version, display_name;
-    std::string scope;           // "floor" / "global"
-    std::string coverage;        // "preserving" / "expanding"
+    std::string scope;     // "floor" / "global"
+    std::string coverage;  // "preserving" / "expanding"
     std::string binary_sha256, source_digest;
     std::string stage_before, stage_after;  // registry stages, e.g. "REVIEWED"
     int strictness = 5;
     uint64_t seed = 0;
-    std::string started_at;      // ISO-8601 UTC
+    std::string started_at;  // ISO-8601 UTC
     double seconds = 0;
     std::vector<StageRun> stages;
     std::vector<CaseResult> cases;
@@ -122,6 +121,7 @@ Result<void> write_json_report(const ValidationReport& report, const std::filesy
 // index.html in `directory`: a summary table per check, then per case its checks, violation
 // examples and images (paths as in the report, relative to `directory`), the stage history
 // and how to reproduce each failure. Self-contained apart from the images; written atomically.
-Result<void> write_html_report(const ValidationReport& report, const std::filesystem::path& directory);
+Result<void> write_html_report(const ValidationReport& report,
+                               const std::filesystem::path& directory);
 
 }  // namespace acetate::harness

@@ -35,8 +35,10 @@ void standard(ImageRGBA& image, const std::array<double, 3>& phase, bool opaque)
         for (uint32_t x = 0; x < image.width; ++x) {
             const double u = (x + 0.5) / image.width, v = (y + 0.5) / image.height;
             float a = 1.0f;
-            if (!opaque && u >= 2.0 / 3.0) a = ((x / 8 + y / 8) % 2) ? 0.5f : 0.0f;
-            else if (!opaque && u >= 1.0 / 3.0) a = float(v);
+            if (!opaque && u >= 2.0 / 3.0)
+                a = ((x / 8 + y / 8) % 2) ? 0.5f : 0.0f;
+            else if (!opaque && u >= 1.0 / 3.0)
+                a = float(v);
             put(image, x, y, colour_at(u, v, phase), a);
         }
 }
@@ -98,11 +100,20 @@ FloorInput make_floor_input(Pattern pattern, uint32_t canvas_width, uint32_t can
     in.image = ImageRGBA(in.width, in.height);
     const std::array<double, 3> phase{unit(rng), unit(rng), unit(rng)};
     switch (pattern) {
-        case Pattern::Standard: standard(in.image, phase, false); break;
-        case Pattern::Opaque: standard(in.image, phase, true); break;
-        case Pattern::AlphaRamp: alpha_ramp(in.image, phase); break;
-        case Pattern::Hdr: hdr(in.image); break;
-        case Pattern::Empty: break;  // all zero
+        case Pattern::Standard:
+            standard(in.image, phase, false);
+            break;
+        case Pattern::Opaque:
+            standard(in.image, phase, true);
+            break;
+        case Pattern::AlphaRamp:
+            alpha_ramp(in.image, phase);
+            break;
+        case Pattern::Hdr:
+            hdr(in.image);
+            break;
+        case Pattern::Empty:
+            break;  // all zero
     }
     round_to_half(in.image);
 
@@ -161,7 +172,9 @@ Result<SceneDesc> write_scene(const SceneLayout& layout, const std::filesystem::
         }
         json lights = json::array();
         for (const LightDesc& l : in.lights)
-            lights.push_back({{"pos", l.pos}, {"radius", l.radius}, {"color", l.color},
+            lights.push_back({{"pos", l.pos},
+                              {"radius", l.radius},
+                              {"color", l.color},
                               {"intensity", l.intensity}});
         json floor = {{"name", fmt::format("floor{}", f)}, {"tiles", {tile}}, {"lights", lights}};
         if (f < layout.floor_effects.size() && !layout.floor_effects[f].empty())
@@ -169,8 +182,10 @@ Result<SceneDesc> write_scene(const SceneLayout& layout, const std::filesystem::
         floors.push_back(floor);
     }
     json scene = {{"format", "acetate-scene/1"},
-                  {"canvas", {{"width", layout.width}, {"height", layout.height},
-                              {"background", {0.0, 0.0, 0.0, 0.0}}}},
+                  {"canvas",
+                   {{"width", layout.width},
+                    {"height", layout.height},
+                    {"background", {0.0, 0.0, 0.0, 0.0}}}},
                   {"floors", floors}};
     if (!layout.global_effects.empty())
         scene["global_effects"] = effects_json(layout.global_effects);

@@ -19,8 +19,8 @@ namespace acetate::harness {
 
 struct FloorInput {
     uint32_t x = 0, y = 0, width = 0, height = 0;  // the tile's rect on the canvas, whole pixels
-    ImageRGBA image;                              // width x height
-    std::map<std::string, ImageRGBA> masks;       // kind -> data mask, width x height
+    ImageRGBA image;                               // width x height
+    std::map<std::string, ImageRGBA> masks;        // kind -> data mask, width x height
     std::vector<LightDesc> lights;
 };
 

@@ -77,7 +77,8 @@ std::string reproduce_command(const ValidateOptions& o, const std::string& case_
         "--registry {} --report {}",
         shell_word(o.plugin.string()), o.strictness, o.seed, o.timeout_seconds, shell_word(case_id),
         shell_word(o.registry.string()), shell_word(o.report_directory.string() + "-repro"));
-    for (const fs::path& dir : o.plugin_paths) command += " --plugin-path " + shell_word(dir.string());
+    for (const fs::path& dir : o.plugin_paths)
+        command += " --plugin-path " + shell_word(dir.string());
     return command;
 }
 
@@ -94,9 +95,11 @@ std::vector<CaseResult> run_cases(RunContext& run, const std::vector<CaseSpec>& 
         const fs::path spec_file = dir / "case.json";
         (void)write_file_atomically(spec_file, to_json(spec).dump(2));
         ChildJob job;
-        job.argv = {o.self.string(), "run-case", "--plugin-info", run.plugin_info_file.string(),
-                    "--case", spec_file.string(), "--out", dir.string(),
-                    "--report", o.report_directory.string()};
+        job.argv = {o.self.string(), "run-case",
+                    "--plugin-info", run.plugin_info_file.string(),
+                    "--case",        spec_file.string(),
+                    "--out",         dir.string(),
+                    "--report",      o.report_directory.string()};
         job.log = dir / "log.txt";
         job.timeout = std::chrono::milliseconds(int64_t(o.timeout_seconds * 1000));
         jobs.push_back(job);
@@ -110,7 +113,8 @@ std::vector<CaseResult> run_cases(RunContext& run, const std::vector<CaseSpec>& 
             auto parsed = read_json(case_result_file(directories[i]));
             auto read = parsed ? case_result_from_json(*parsed, "result.json")
                                : Result<CaseResult>(parsed.error());
-            if (read) result = std::move(read.value());
+            if (read)
+                result = std::move(read.value());
             else {
                 result.verdict = Verdict::Crash;
                 result.message = "the child wrote no readable result: " + read.error().message;
@@ -141,9 +145,9 @@ std::vector<CaseResult> run_cases(RunContext& run, const std::vector<CaseSpec>& 
         result.reproduce = reproduce_command(o, cases[i].id);
         result.log = log;
         ++run.done;
-        std::printf("[%zu/%zu] %-28s %-7s %5.1f s%s%s\n", run.done, run.total,
-                    result.id.c_str(), to_string(result.verdict), result.seconds,
-                    result.message.empty() ? "" : "  ", result.message.c_str());
+        std::printf("[%zu/%zu] %-28s %-7s %5.1f s%s%s\n", run.done, run.total, result.id.c_str(),
+                    to_string(result.verdict), result.seconds, result.message.empty() ? "" : "  ",
+                    result.message.c_str());
         std::fflush(stdout);
         results[i] = std::move(result);
     });
@@ -170,14 +174,16 @@ void compare_across_processes(std::vector<CaseResult>& results, const fs::path& 
         CheckResult* check = find_check(*run2, "determinism");
         if (check && run1->output_digest != run2->output_digest) {
             check->verdict = Verdict::Fail;
-            check->message = fmt::format(
-                "two processes rendered the same case differently (digests {} and {})",
-                run1->output_digest.substr(0, 12), run2->output_digest.substr(0, 12));
+            check->message =
+                fmt::format("two processes rendered the same case differently (digests {} and {})",
+                            run1->output_digest.substr(0, 12), run2->output_digest.substr(0, 12));
             // Where: the first floor whose saved outputs differ.
             for (int f = 0; f < 8; ++f) {
                 const auto name = fmt::format("output.floor{}.exr", f);
-                auto a = load_image(report_dir / "cases" / slug(run1->id) / name, ImageRole::Colour);
-                auto b = load_image(report_dir / "cases" / slug(run2->id) / name, ImageRole::Colour);
+                auto a =
+                    load_image(report_dir / "cases" / slug(run1->id) / name, ImageRole::Colour);
+                auto b =
+                    load_image(report_dir / "cases" / slug(run2->id) / name, ImageRole::Colour);
                 if (!a || !b) break;
                 const ImageDifference diff = compare_exact(*a, *b, f);
                 if (diff.pixels == 0) continue;
@@ -200,8 +206,9 @@ void compare_across_processes(std::vector<CaseResult>& results, const fs::path& 
         std::printf("note: %s: state-isolation not judged: the plugin is not deterministic\n",
                     r.id.c_str());
         state->verdict = Verdict::Skip;
-        state->message = "not judged: the plugin is not deterministic (see determinism), so its "
-                         "images differ between renders anyway";
+        state->message =
+            "not judged: the plugin is not deterministic (see determinism), so its "
+            "images differ between renders anyway";
         state->examples.clear();
         state->violations = 0;
         r.verdict = Verdict::Pass;
@@ -248,9 +255,10 @@ std::vector<CompanionPlugin> find_companions(const Registry& registry, const Plu
             }
         }
         if (!found)
-            notes.push_back(fmt::format("{} {} is {} but its recorded binary was not found on "
-                                        "the plugin search path; left out",
-                                        e.id, e.version, to_string(e.stage())));
+            notes.push_back(
+                fmt::format("{} {} is {} but its recorded binary was not found on "
+                            "the plugin search path; left out",
+                            e.id, e.version, to_string(e.stage())));
     }
     return out;
 }
@@ -262,8 +270,8 @@ Result<void> record(const ValidateOptions& o, const PluginInfo& plugin, Validati
     evidence.harness_version = kHarnessVersion;
     evidence.counts = verdict_counts(results);
     evidence.report = report;
-    evidence.summary = fmt::format("{} cases at strictness {}, seed {}: all passed",
-                                   results.size(), o.strictness, o.seed);
+    evidence.summary = fmt::format("{} cases at strictness {}, seed {}: all passed", results.size(),
+                                   o.strictness, o.seed);
     if (stage == ValidationStage::Integrated) {
         std::vector<std::string> ids;
         for (const CompanionPlugin& c : companions) ids.push_back(c.id);
@@ -313,16 +321,17 @@ std::vector<HistoryLine> history_of(const fs::path& registry_file, const PluginI
     if (!registry) return lines;
     const RegistryEntry* e = registry->find(plugin.id, plugin.version);
     if (!e) return lines;
-    if (e->review) lines.push_back({e->review->at, "review (REVIEWED)", e->review->by, e->review->notes});
+    if (e->review)
+        lines.push_back({e->review->at, "review (REVIEWED)", e->review->by, e->review->notes});
     if (e->alpha_tested)
-        lines.push_back({e->alpha_tested->at, "ALPHA_TESTED evidence", e->alpha_tested->harness_version,
-                         e->alpha_tested->summary});
+        lines.push_back({e->alpha_tested->at, "ALPHA_TESTED evidence",
+                         e->alpha_tested->harness_version, e->alpha_tested->summary});
     if (e->integrated)
         lines.push_back({e->integrated->at, "INTEGRATED evidence", e->integrated->harness_version,
                          e->integrated->summary});
     if (e->promotion)
-        lines.push_back({e->promotion->at, "promotion (VALIDATED)", e->promotion->by,
-                         e->promotion->notes});
+        lines.push_back(
+            {e->promotion->at, "promotion (VALIDATED)", e->promotion->by, e->promotion->notes});
     return lines;
 }
 
@@ -378,11 +387,11 @@ Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugi
     run_children({job}, 1, [&](size_t, const ChildOutcome& o) { outcome = o; });
     if (!outcome.started) return make_error(ErrorCode::Io, outcome.message);
     if (outcome.timed_out || outcome.signal || outcome.exit_code != 0) {
-        const std::string why = outcome.exit_code > 0
-                                    ? last_line(tail_of_file(job.log, 2000))
-                                    : fmt::format("{} while loading it ({})",
-                                                  outcome.timed_out ? "it hung" : "it crashed",
-                                                  outcome.message);
+        const std::string why =
+            outcome.exit_code > 0
+                ? last_line(tail_of_file(job.log, 2000))
+                : fmt::format("{} while loading it ({})",
+                              outcome.timed_out ? "it hung" : "it crashed", outcome.message);
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("{}: cannot describe the plugin: {}", plugin.string(), why));
     }
@@ -404,14 +413,15 @@ std::vector<std::string> import_signoffs(Registry& registry, const Registry& sig
         at(*committed->review);
         if (registry.record_review(p.id, p.version, p.binary_sha256, p.source_digest,
                                    committed->review->by, committed->review->notes))
-            imported.push_back(fmt::format("review by {} ({})", committed->review->by,
-                                           committed->review->at));
+            imported.push_back(
+                fmt::format("review by {} ({})", committed->review->by, committed->review->at));
     }
     if (committed->promotion && committed->promotion->source_digest == p.source_digest &&
         registry.effective_stage(p.id, p.version, p.binary_sha256, p.source_digest) ==
             ValidationStage::Integrated) {
         at(*committed->promotion);
-        if (registry.promote(p.id, p.version, committed->promotion->by, committed->promotion->notes))
+        if (registry.promote(p.id, p.version, committed->promotion->by,
+                             committed->promotion->notes))
             imported.push_back(fmt::format("promotion by {} ({})", committed->promotion->by,
                                            committed->promotion->at));
     }
@@ -483,12 +493,13 @@ int run_validate(const ValidateOptions& o) {
     }
     const ValidationStage before = current_stage(o.registry, plugin);
     report.stage_before = to_string(before);
-    std::printf("validating %s %s (%s, %s, %s) from %s\nregistry %s: %s; strictness %d, seed "
-                "%llu, %u jobs\n",
-                plugin.id.c_str(), plugin.version.c_str(), plugin.display_name.c_str(),
-                plugin.scope.c_str(), plugin.coverage.c_str(), o.plugin.string().c_str(),
-                o.registry.string().c_str(), to_string(before), o.strictness,
-                (unsigned long long)o.seed, o.jobs);
+    std::printf(
+        "validating %s %s (%s, %s, %s) from %s\nregistry %s: %s; strictness %d, seed "
+        "%llu, %u jobs\n",
+        plugin.id.c_str(), plugin.version.c_str(), plugin.display_name.c_str(),
+        plugin.scope.c_str(), plugin.coverage.c_str(), o.plugin.string().c_str(),
+        o.registry.string().c_str(), to_string(before), o.strictness, (unsigned long long)o.seed,
+        o.jobs);
 
     auto select = [&](std::vector<CaseSpec> cases) {
         if (!partial) return cases;
@@ -515,13 +526,14 @@ int run_validate(const ValidateOptions& o) {
             stage_run.note = "only some cases ran (--case): nothing recorded";
         } else if (int(now) < int(stage) - 1) {
             stage_run.note = fmt::format(
-                "passed, but not recorded: the plugin is {} and {} needs {} first{}", to_string(now),
-                to_string(stage), to_string(ValidationStage(int(stage) - 1)),
+                "passed, but not recorded: the plugin is {} and {} needs {} first{}",
+                to_string(now), to_string(stage), to_string(ValidationStage(int(stage) - 1)),
                 now == ValidationStage::Unvalidated
                     ? fmt::format(" (acetate-harness review {} --reviewer NAME --notes TEXT)",
                                   o.plugin.string())
                     : "");
-        } else if (auto same = file_sha256(o.plugin); !same || same.value() != plugin.binary_sha256) {
+        } else if (auto same = file_sha256(o.plugin);
+                   !same || same.value() != plugin.binary_sha256) {
             // The file changed during the run: the cases may have run another binary.
             stage_run.note = "passed, but not recorded: the plugin file changed during the run";
             stage_run.passed = false;
@@ -566,8 +578,10 @@ int run_validate(const ValidateOptions& o) {
         for (const std::string& note : notes) std::printf("note: %s\n", note.c_str());
         std::printf("integration: with %zu other integrated plugin%s%s\n", companions.size(),
                     companions.size() == 1 ? "" : "s", companions.empty() ? " (none yet)" : "");
-        const auto cases = select(plan_cases(plugin, o.strictness, o.seed, false, true, companions));
-        if (!cases.empty()) passed = try_stage(ValidationStage::Integrated, cases, companions) && passed;
+        const auto cases =
+            select(plan_cases(plugin, o.strictness, o.seed, false, true, companions));
+        if (!cases.empty())
+            passed = try_stage(ValidationStage::Integrated, cases, companions) && passed;
         if (passed && !partial) {
             auto imported = import_committed(o, plugin);
             if (!imported) return fail_run(imported.error().message);
@@ -581,7 +595,7 @@ int run_validate(const ValidateOptions& o) {
     print_summary(report);
     std::printf("\n%s %s: %s -> %s; %s\n", plugin.id.c_str(), plugin.version.c_str(),
                 report.stage_before.c_str(), report.stage_after.c_str(),
-                run_failed(report)  ? "FAILED"
+                run_failed(report) ? "FAILED"
                 : recording_failed ? "checks passed, but the evidence was not recorded"
                                    : "all checks passed");
     for (const StageRun& s : report.stages)

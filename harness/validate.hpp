@@ -25,15 +25,15 @@ struct ValidateOptions {
     ValidationStage up_to = ValidationStage::Integrated;  // --stage
     int strictness = 5;
     uint64_t seed = 1;
-    std::filesystem::path report_directory;         // --report; default ./harness-report/<stem>
+    std::filesystem::path report_directory;          // --report; default ./harness-report/<stem>
     std::optional<std::filesystem::path> json_file;  // --json
     unsigned jobs = 2;
     double timeout_seconds = 120;
     std::vector<std::string> only_cases;  // --case: run just these (no evidence is recorded)
     std::filesystem::path registry;
-    std::optional<std::filesystem::path> signoffs;  // committed sign-offs to import
+    std::optional<std::filesystem::path> signoffs;    // committed sign-offs to import
     std::vector<std::filesystem::path> plugin_paths;  // where integrated companions are found
-    std::filesystem::path self;  // this executable, for the children
+    std::filesystem::path self;                       // this executable, for the children
 };
 
 // Returns the exit status: 0 when no check failed, 1 when one did or the run could not start.

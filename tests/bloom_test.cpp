@@ -46,9 +46,15 @@ struct Level {
     }
 };
 
-int level_size(int canvas, int k) { return std::max(1, (canvas + (1 << k) - 1) >> k); }
-double max3(const Rgb& c) { return std::max({c[0], c[1], c[2]}); }
-double luma(const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+int level_size(int canvas, int k) {
+    return std::max(1, (canvas + (1 << k) - 1) >> k);
+}
+double max3(const Rgb& c) {
+    return std::max({c[0], c[1], c[2]});
+}
+double luma(const Rgb& c) {
+    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+}
 
 Rgb bright(Rgb c, const BloomParams& p) {
     const double cap = 65504.0 / 16.0;
@@ -129,7 +135,7 @@ std::vector<std::array<double, 4>> cpu_bloom(const ImageRGBA& in, const BloomPar
 // ---- Fixture ----
 
 class BloomTest : public RenderTest {
-protected:
+  protected:
     static EffectRef bloom(nlohmann::json params = nlohmann::json::object(),
                            std::string preset = "") {
         EffectRef ref;
@@ -140,8 +146,11 @@ protected:
         return ref;
     }
     static nlohmann::json to_json(const BloomParams& p) {
-        return {{"threshold", p.threshold}, {"knee", p.knee}, {"intensity", p.intensity},
-                {"levels", p.levels}, {"radius", p.radius}};
+        return {{"threshold", p.threshold},
+                {"knee", p.knee},
+                {"intensity", p.intensity},
+                {"levels", p.levels},
+                {"radius", p.radius}};
     }
 
     // One floor holding `tile` over the whole canvas, transparent background, bloom global.
@@ -192,8 +201,8 @@ ImageRGBA spots_scene(uint32_t w, uint32_t h) {
         for (uint32_t x = 19; x < 22; ++x) put(tile, x, y, {8, 6, 2, 1});
     for (uint32_t y = 30; y < 32 && y < h; ++y)
         for (uint32_t x = 44; x < 46 && x < w; ++x) put(tile, x, y, {50, 50, 50, 1});
-    put(tile, w - 1, 0, {20, 5, 1, 1});   // a corner spot: edge clamping and partial texels
-    put(tile, 2, h - 2, {3, 9, 30, 1});   // light inside the transparent band (alpha 1)
+    put(tile, w - 1, 0, {20, 5, 1, 1});  // a corner spot: edge clamping and partial texels
+    put(tile, 2, h - 2, {3, 9, 30, 1});  // light inside the transparent band (alpha 1)
     put(tile, 30, h - 7, {60000, 60000, 60000, 1});  // firefly
     return tile;
 }
@@ -203,8 +212,8 @@ ImageRGBA spots_scene(uint32_t w, uint32_t h) {
 // Tolerance, per channel: GPU = model within u * |out| + 2N * u * |added| + 1e-6, u = 2^-10.
 // Why: every pass stores RGBA16F, one rounding of at most 1 ulp (2^-10 relative: Vulkan lets
 // an attachment write round toward zero, and lavapipe does; the output's error is then just
-// under 1 ulp, which is why the worst pixel sits at ~0.95 of this bound). The prefilter reads the exact
-// input, so its non-linear steps (knee, Karis weights) see no error; every later step is a
+// under 1 ulp, which is why the worst pixel sits at ~0.95 of this bound). The prefilter reads the
+// exact input, so its non-linear steps (knee, Karis weights) see no error; every later step is a
 // convex combination of non-negative values, which keeps a relative error bound and adds its
 // own rounding. down_k so carries k*u, up_k max(up_{k+1}, down_k) + u, up1 (2N-1)*u; 2N leaves
 // room for fp32 arithmetic and sample positions (~1e-5 relative, exact bilinear fractions at
@@ -218,7 +227,8 @@ TEST_F(BloomTest, MatchesTheCpuModelForEveryPreset) {
         BloomParams p;
     };
     std::vector<Case> cases;
-    const std::pair<const char*, int> presets[] = {{"low", 3}, {"medium", 4}, {"high", 5}, {"ultra", 6}};
+    const std::pair<const char*, int> presets[] = {
+        {"low", 3}, {"medium", 4}, {"high", 5}, {"ultra", 6}};
     for (const auto& [name, levels] : presets) {
         BloomParams p;
         p.levels = levels;
@@ -254,9 +264,9 @@ TEST_F(BloomTest, MatchesTheCpuModelForEveryPreset) {
                     const double err = std::fabs(got[k] - e[k]);
                     worst = std::max(worst, err / tol);
                     if (err > tol && ++failures <= 5)
-                        ADD_FAILURE() << "pixel " << x << "," << y << " channel " << k << ": got "
-                                      << got[k] << ", model " << e[k] << " (tolerance " << tol
-                                      << ")";
+                        ADD_FAILURE()
+                            << "pixel " << x << "," << y << " channel " << k << ": got " << got[k]
+                            << ", model " << e[k] << " (tolerance " << tol << ")";
                 }
             }
         std::printf("[ bloom    ] %-8s levels %d: worst error %.3f of tolerance\n",
@@ -278,13 +288,13 @@ TEST_F(BloomTest, MatchesTheCpuModelForEveryPreset) {
 //
 // Why it balances: in the 4x4 box (down) every input texel is read by two outputs per axis at
 // 1/4 each: 1/2 per axis x 2 (area ratio) = 1. On even sizes the edges balance too: the edge
-// texel is read by one output only, but twice (its own tap and the clamped one). The 9-tap tent sums to 1 and bilinear
-// taps at half-texel spacing give every coarse texel a total weight of 4 fine texels = its area;
-// the composite's single bilinear tap likewise. So the chain preserves energy, and the composite
-// divides up1 (the sum of N levels) by N: added energy = intensity x bright-pass energy.
-// The one exception is the tent's clamp at an edge (radius 1): summing its taps per coarse
-// texel, the edge texel gives 33/32 of its energy and the one next to it 31/32 (per axis; all
-// others exactly 1). A level-k contribution passes k-1 tents, so whatever the picture,
+// texel is read by one output only, but twice (its own tap and the clamped one). The 9-tap tent
+// sums to 1 and bilinear taps at half-texel spacing give every coarse texel a total weight of 4
+// fine texels = its area; the composite's single bilinear tap likewise. So the chain preserves
+// energy, and the composite divides up1 (the sum of N levels) by N: added energy = intensity x
+// bright-pass energy. The one exception is the tent's clamp at an edge (radius 1): summing its taps
+// per coarse texel, the edge texel gives 33/32 of its energy and the one next to it 31/32 (per
+// axis; all others exactly 1). A level-k contribution passes k-1 tents, so whatever the picture,
 //   added / (intensity x energy) lies in [ mean_k (31/32)^(2(k-1)), mean_k (33/32)^(2(k-1)) ]
 // ([0.9397, 1.0648] for 3 levels, [0.8843, 1.1353] for 5), and is exactly 1 for light whose
 // filter reach never touches an edge. Clamping never discards a tap, so nothing is lost beyond
@@ -297,7 +307,7 @@ TEST_F(BloomTest, MatchesTheCpuModelForEveryPreset) {
 // the final sum: 2^-24 x (in + 25 N x added) summed over the canvas, relative to the blob's
 // expected added energy.
 class BloomEnergyTest : public BloomTest {
-protected:
+  protected:
     struct Balance {
         double ratio[3];      // added blob energy / (intensity x blob energy), per channel
         double precision[3];  // the bound above
@@ -369,9 +379,10 @@ TEST_F(BloomEnergyTest, EdgeLightStaysWithinTheClampBound) {
                 EXPECT_GE(b.ratio[c], lo - b.precision[c]);
                 EXPECT_LE(b.ratio[c], hi + b.precision[c]);
                 EXPECT_GT(b.ratio[c], 1.0);  // the clamp adds, as the model says, and is seen
-                std::printf("[ bloom    ] edge blob %ux%u, %d levels: channel %d ratio %.5f in "
-                            "[%.4f, %.4f] (precision %.1e)\n",
-                            blob.w, blob.h, levels, c, b.ratio[c], lo, hi, b.precision[c]);
+                std::printf(
+                    "[ bloom    ] edge blob %ux%u, %d levels: channel %d ratio %.5f in "
+                    "[%.4f, %.4f] (precision %.1e)\n",
+                    blob.w, blob.h, levels, c, b.ratio[c], lo, hi, b.precision[c]);
             }
         }
     }
@@ -385,9 +396,12 @@ TEST_F(BloomTest, HalfFloatMaximumAndFirefliesStayFinite) {
     for (uint32_t y = 0; y < 45; ++y)
         for (uint32_t x = 0; x < 67; ++x) {
             if (x < 20) continue;  // transparent
-            if (x < 40 && y < 30) put(tile, x, y, {65504, 65504, 65504, 1});
-            else if ((x * 7 + y * 13) % 17 == 0) put(tile, x, y, {60000, 60000, 60000, 1});
-            else put(tile, x, y, {0.5f, 0.25f, 65504, 1});
+            if (x < 40 && y < 30)
+                put(tile, x, y, {65504, 65504, 65504, 1});
+            else if ((x * 7 + y * 13) % 17 == 0)
+                put(tile, x, y, {60000, 60000, 60000, 1});
+            else
+                put(tile, x, y, {0.5f, 0.25f, 65504, 1});
         }
     put(tile, 10, 10, {60000, 30000, 60000, 1});  // a firefly in the transparent part
     const ImageRGBA in = input_of(tile, BloomParams{});
@@ -421,7 +435,7 @@ TEST_F(BloomTest, AFireflyAddsAtMostAThirdOfIntensity) {
         for (uint32_t x = 0; x < 48; ++x)
             if (x != 21 || y != 17) peak = std::max(peak, double(out.at(x, y)[0]));
     EXPECT_LE(peak, 0.6 / 3 * (1 + 11.0 / 1024));  // 2N + 1 roundings of 2^-10
-    EXPECT_GT(peak, 0.01);  // it still blooms
+    EXPECT_GT(peak, 0.01);                         // it still blooms
 }
 
 // Tiny and odd canvases: no validation message (TearDown), finite output, alpha never lower
@@ -433,7 +447,8 @@ TEST_F(BloomTest, TinyAndOddCanvasesKeepTheContract) {
         ImageRGBA tile(w, h);
         for (uint32_t y = 0; y < h; ++y)
             for (uint32_t x = 0; x < w; ++x) {
-                const float a = (x + 2 * y) % 5 == 0 ? 0.0f : float((x * 31 + y * 17) % 100) / 99.0f;
+                const float a =
+                    (x + 2 * y) % 5 == 0 ? 0.0f : float((x * 31 + y * 17) % 100) / 99.0f;
                 const float v = (x * 13 + y * 7) % 97 == 0 ? 300.0f : 0.7f;
                 put(tile, x, y, {v * a, 0.5f * v * a, 0.25f * a, a});
             }

@@ -61,8 +61,7 @@ class HostPolicy : public ::testing::Test {
         fs::copy_file(built, dir_ / "probe" / "lighting.so");
 
         ImageRGBA tile(16, 16);
-        for (size_t i = 0; i < tile.pixels.size(); ++i)
-            tile.pixels[i] = (i % 4 == 3) ? 1.0f : 0.4f;
+        for (size_t i = 0; i < tile.pixels.size(); ++i) tile.pixels[i] = (i % 4 == 3) ? 1.0f : 0.4f;
         test::write_exr(dir_ / "tile.exr", tile);
         test::write_text(dir_ / "scene.json", scene_text(true));
         test::write_text(dir_ / "plain.json", scene_text(false));
@@ -96,19 +95,22 @@ class HostPolicy : public ::testing::Test {
         const char* xdg_env = std::getenv("XDG_CACHE_HOME");
         CliRun run;
         run.command =
-            "cd " + test::shell_quote(dir_.string()) + " && ACETATE_VALIDATION=1 MESA_SHADER_CACHE_DIR=" +
+            "cd " + test::shell_quote(dir_.string()) +
+            " && ACETATE_VALIDATION=1 MESA_SHADER_CACHE_DIR=" +
             test::shell_quote(mesa_env && *mesa_env ? mesa_env : (cache / "mesa").string()) +
-            " XDG_CACHE_HOME=" + test::shell_quote(xdg_env && *xdg_env ? xdg_env : (cache / "xdg").string()) +
-            " LD_DEBUG=files LD_DEBUG_OUTPUT=" + test::shell_quote((ld_dir / "ld").string()) + " " + env +
-            " " + test::shell_quote(ACETATE_CLI_PATH) + " render " + args + " --plugin-path " +
-            test::shell_quote(plugins_.string());
-        const int raw = std::system((run.command + " >" + test::shell_quote(out_file.string()) + " 2>" +
-                                     test::shell_quote(err_file.string()) + " </dev/null")
+            " XDG_CACHE_HOME=" +
+            test::shell_quote(xdg_env && *xdg_env ? xdg_env : (cache / "xdg").string()) +
+            " LD_DEBUG=files LD_DEBUG_OUTPUT=" + test::shell_quote((ld_dir / "ld").string()) + " " +
+            env + " " + test::shell_quote(ACETATE_CLI_PATH) + " render " + args +
+            " --plugin-path " + test::shell_quote(plugins_.string());
+        const int raw = std::system((run.command + " >" + test::shell_quote(out_file.string()) +
+                                     " 2>" + test::shell_quote(err_file.string()) + " </dev/null")
                                         .c_str());
         run.code = raw != -1 && WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
         run.out = test::read_file(out_file);
         run.err = test::read_file(err_file);
-        for (const auto& item : fs::directory_iterator(ld_dir)) run.ld_log += test::read_file(item.path());
+        for (const auto& item : fs::directory_iterator(ld_dir))
+            run.ld_log += test::read_file(item.path());
         return run;
     }
 
@@ -161,7 +163,8 @@ class HostPolicy : public ::testing::Test {
 // (a) Nothing validated: refused in one line, the library never opened, nothing written.
 TEST_F(HostPolicy, AnEmptyRegistryRefusesThePluginInOneLine) {
     const fs::path registry = dir_ / "no-such-registry.json";
-    const CliRun run = render("scene.json -o out.png --registry " + test::shell_quote(registry.string()));
+    const CliRun run =
+        render("scene.json -o out.png --registry " + test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 1) << run.describe();
     const auto lines = test::nonempty_lines(run.err);
     ASSERT_EQ(lines.size(), 1u) << run.describe();
@@ -188,7 +191,8 @@ TEST_F(HostPolicy, AValidatedBinaryRenders) {
     EXPECT_TRUE(fs::exists(dir_ / "out.png")) << run.describe();
     EXPECT_TRUE(opened_the_copy(run, plugin_file())) << run.describe();
 
-    run = render("scene.json -o env.png", "ACETATE_REGISTRY=" + test::shell_quote(registry.string()));
+    run =
+        render("scene.json -o env.png", "ACETATE_REGISTRY=" + test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(run.err.empty()) << run.describe();
     EXPECT_TRUE(fs::exists(dir_ / "env.png")) << run.describe();
@@ -214,7 +218,8 @@ TEST_F(HostPolicy, AChangedBinaryIsRefused) {
     ASSERT_TRUE(changed_sha);
     ASSERT_NE(changed_sha.value(), validated_sha_);
 
-    const CliRun run = render("scene.json -o out.png --registry " + test::shell_quote(registry.string()));
+    const CliRun run =
+        render("scene.json -o out.png --registry " + test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 1) << run.describe();
     const auto lines = test::nonempty_lines(run.err);
     ASSERT_EQ(lines.size(), 1u) << run.describe();
@@ -233,8 +238,8 @@ TEST_F(HostPolicy, AChangedBinaryIsRefused) {
 // (d) --allow-unvalidated: loads it anyway, with one warning line naming it.
 TEST_F(HostPolicy, AllowUnvalidatedLoadsWithAWarning) {
     const fs::path registry = dir_ / "no-such-registry.json";
-    const CliRun run =
-        render("scene.json -o out.png --allow-unvalidated --registry " + test::shell_quote(registry.string()));
+    const CliRun run = render("scene.json -o out.png --allow-unvalidated --registry " +
+                              test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     const auto lines = test::nonempty_lines(run.err);
     ASSERT_EQ(lines.size(), 1u) << run.describe();
@@ -253,8 +258,8 @@ TEST_F(HostPolicy, AllowUnvalidatedIsSilentForAValidatedBinary) {
     const fs::path registry = dir_ / "registry.json";
     write_validated_registry(registry);
     if (HasFatalFailure()) return;
-    const CliRun run =
-        render("scene.json -o out.png --allow-unvalidated --registry " + test::shell_quote(registry.string()));
+    const CliRun run = render("scene.json -o out.png --allow-unvalidated --registry " +
+                              test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(run.err.empty()) << run.describe();
 }
@@ -276,7 +281,8 @@ TEST_F(HostPolicy, AMalformedRegistryIsOneLineNamingTheFile) {
     const std::string sha = file_sha256(plugin_file()).value();
     test::write_text(registry, R"({"format": "acetate-registry/1", "plugins": [
   {"id": "acetate.lighting", "version": "1.0.0", "stage": "VALIDATED",
-   "binary_sha256": ")" + sha + R"(", "source_digest": ")" + sha + R"("}]})");
+   "binary_sha256": ")" + sha + R"(", "source_digest": ")" +
+                                   sha + R"("}]})");
     run = render("scene.json -o out.png --allow-unvalidated --registry " +
                  test::shell_quote(registry.string()));
     EXPECT_EQ(run.code, 1) << run.describe();
@@ -295,7 +301,8 @@ TEST_F(HostPolicy, ASceneWithoutPluginsNeedsNoRegistry) {
     EXPECT_TRUE(fs::exists(dir_ / "empty.png"));
 
     test::write_text(dir_ / "broken.json", "{ not a registry");
-    run = render("plain.json -o broken.png --registry " + test::shell_quote((dir_ / "broken.json").string()));
+    run = render("plain.json -o broken.png --registry " +
+                 test::shell_quote((dir_ / "broken.json").string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(fs::exists(dir_ / "broken.png"));
 }
@@ -339,11 +346,11 @@ TEST_F(HostPolicy, ARefusedSceneLetsTheOthersRender) {
 TEST_F(HostPolicy, TheLoaderAsksBeforeOpening) {
     std::vector<std::pair<std::string, fs::path>> asked;
     PluginLoader loader({plugins_});
-    loader.set_admission([&](const std::string& id, const fs::path& file,
-                             const fs::path&) -> Result<void> {
-        asked.emplace_back(id, file);
-        return make_error(ErrorCode::InvalidInput, "refused by the test");
-    });
+    loader.set_admission(
+        [&](const std::string& id, const fs::path& file, const fs::path&) -> Result<void> {
+            asked.emplace_back(id, file);
+            return make_error(ErrorCode::InvalidInput, "refused by the test");
+        });
     // A file that is not a library at all: opening it would fail with dlopen's message.
     const fs::path junk = dir_ / "junk.so";
     test::write_text(junk, "not an ELF file");
@@ -360,11 +367,11 @@ TEST_F(HostPolicy, TheLoaderAsksBeforeOpening) {
 
     // Admitted: loaded, and asked once per id.
     asked.clear();
-    loader.set_admission([&](const std::string& id, const fs::path& file,
-                             const fs::path&) -> Result<void> {
-        asked.emplace_back(id, file);
-        return {};
-    });
+    loader.set_admission(
+        [&](const std::string& id, const fs::path& file, const fs::path&) -> Result<void> {
+            asked.emplace_back(id, file);
+            return {};
+        });
     ASSERT_TRUE(loader.load("acetate.lighting"));
     ASSERT_TRUE(loader.load("acetate.lighting"));
     EXPECT_EQ(asked.size(), 1u);
@@ -378,15 +385,15 @@ TEST_F(HostPolicy, TheFileLoadedIsTheFileChecked) {
     const auto expected = file_sha256(plugin_file());
     ASSERT_TRUE(expected);
     std::string checked;
-    loader.set_admission([&](const std::string&, const fs::path& file,
-                             const fs::path& contents) -> Result<void> {
-        auto sha = file_sha256(contents);
-        if (!sha) return sha.error();
-        checked = sha.value();
-        test::write_text(dir_ / "swap.tmp", "not an ELF file");
-        fs::rename(dir_ / "swap.tmp", file);
-        return {};
-    });
+    loader.set_admission(
+        [&](const std::string&, const fs::path& file, const fs::path& contents) -> Result<void> {
+            auto sha = file_sha256(contents);
+            if (!sha) return sha.error();
+            checked = sha.value();
+            test::write_text(dir_ / "swap.tmp", "not an ELF file");
+            fs::rename(dir_ / "swap.tmp", file);
+            return {};
+        });
     auto loaded = loader.load("acetate.lighting");
     ASSERT_TRUE(loaded) << loaded.error().message;
     EXPECT_EQ(checked, expected.value());
@@ -400,9 +407,8 @@ TEST_F(HostPolicy, TheFileLoadedIsTheFileChecked) {
 TEST_F(HostPolicy, TwoPinnedPluginsStayApart) {
     fs::copy_file(fs::path(ACETATE_PLUGIN_DIR) / "bloom.so", plugins_ / "bloom.so");
     PluginLoader loader({plugins_});
-    loader.set_admission([](const std::string&, const fs::path&, const fs::path&) -> Result<void> {
-        return {};
-    });
+    loader.set_admission(
+        [](const std::string&, const fs::path&, const fs::path&) -> Result<void> { return {}; });
     auto lighting = loader.load("acetate.lighting");
     ASSERT_TRUE(lighting) << lighting.error().message;
     auto bloom = loader.load("acetate.bloom");

@@ -3,13 +3,11 @@
 // truncated write (a bad file is ignored with a warning, then replaced by a good one).
 
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "scene/image_io.hpp"
 #include "test_files.hpp"
@@ -26,7 +24,7 @@ struct CliRun {
 // Runs `acetate render ARGS --allow-unvalidated`: these tests load the built plugins, which
 // the registry need not have validated (the host policy is tested in cli_policy_test.cpp).
 CliRun run_cli(const std::string& args, const std::filesystem::path& dir,
-            const std::filesystem::path& cache_home) {
+               const std::filesystem::path& cache_home) {
     const auto err = dir / "stderr.txt";
     const std::string command = "ACETATE_VALIDATION=1 XDG_CACHE_HOME='" + cache_home.string() +
                                 "' '" ACETATE_CLI_PATH "' render " + args +
@@ -43,18 +41,19 @@ CliRun run_cli(const std::string& args, const std::filesystem::path& dir,
 }
 
 std::string scene_json(const std::string& image, bool with_lighting, int width) {
-    std::string effects = with_lighting
-                              ? R"([{"plugin": "acetate.lighting", "params": {"day": 0.5}}])"
-                              : "[]";
+    std::string effects =
+        with_lighting ? R"([{"plugin": "acetate.lighting", "params": {"day": 0.5}}])" : "[]";
     return R"({"format": "acetate-scene/1", "canvas": {"width": )" + std::to_string(width) +
            R"(, "height": 24, "background": [0, 0, 0, 1]},
-  "floors": [{"name": "ground", "tiles": [{"image": ")" + image + R"(", "rect": [0, 0, 24, 24]}],
+  "floors": [{"name": "ground", "tiles": [{"image": ")" +
+           image + R"(", "rect": [0, 0, 24, 24]}],
               "lights": [{"pos": [12, 12], "radius": 10, "color": [1, 1, 1], "intensity": 1}],
-              "effects": )" + effects + "}]}";
+              "effects": )" +
+           effects + "}]}";
 }
 
 class CliSceneSwitch : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         dir_ = scratch_dir();
         ImageRGBA tile(24, 24);
@@ -69,10 +68,11 @@ protected:
 TEST_F(CliSceneSwitch, TheThirdLoadCompilesNothingAndCreatesNoPipeline) {
     const auto out = dir_ / "out.png";
     const auto stats_file = dir_ / "stats.json";
-    const CliRun run = run_cli("'" + (dir_ / "a.json").string() + "' '" + (dir_ / "b.json").string() +
-                                "' '" + (dir_ / "a.json").string() + "' -o '" + out.string() +
-                                "' --stats '" + stats_file.string() + "'",
-                            dir_, dir_ / "cache");
+    const CliRun run =
+        run_cli("'" + (dir_ / "a.json").string() + "' '" + (dir_ / "b.json").string() + "' '" +
+                    (dir_ / "a.json").string() + "' -o '" + out.string() + "' --stats '" +
+                    stats_file.string() + "'",
+                dir_, dir_ / "cache");
     ASSERT_EQ(run.status, 0) << run.err;
     const auto stats = nlohmann::json::parse(std::ifstream(stats_file));
     const auto& scenes = stats.at("scenes");
@@ -131,12 +131,11 @@ TEST_F(CliSceneSwitch, ASceneWithABrokenPluginIsReportedAndTheOthersStillRender)
                R"({"format": "acetate-scene/1", "canvas": {"width": 16, "height": 16},
   "floors": [{"name": "ground", "tiles": [{"image": "tile.exr", "rect": [0, 0, 16, 16]}],
               "effects": [{"plugin": "test.bad_shader"}]}]})");
-    const CliRun run = run_cli("'" + (dir_ / "a.json").string() + "' '" +
-                                   (dir_ / "broken.json").string() + "' '" +
-                                   (dir_ / "a.json").string() + "' -o '" +
-                                   (dir_ / "out.png").string() + "' --plugin-path '" +
-                                   ACETATE_TEST_PLUGIN_DIR + "'",
-                               dir_, dir_ / "cache");
+    const CliRun run =
+        run_cli("'" + (dir_ / "a.json").string() + "' '" + (dir_ / "broken.json").string() + "' '" +
+                    (dir_ / "a.json").string() + "' -o '" + (dir_ / "out.png").string() +
+                    "' --plugin-path '" + ACETATE_TEST_PLUGIN_DIR + "'",
+                dir_, dir_ / "cache");
     EXPECT_EQ(run.status, 1) << run.err;
     EXPECT_NE(run.err.find("broken.json: floors[0].effects[0]"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("bad_shader.so"), std::string::npos) << run.err;

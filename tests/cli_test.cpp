@@ -14,12 +14,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "scene/image_io.hpp"
 #include "test_files.hpp"
@@ -71,9 +70,11 @@ CliRun run_acetate(const fs::path& dir, const std::string& args) {
     fs::create_directories(mesa, ec);
     fs::create_directories(xdg, ec);
     CliRun run;
-    run.command = "cd " + test::shell_quote(dir.string()) + " && ACETATE_VALIDATION=1 MESA_SHADER_CACHE_DIR=" +
-                  test::shell_quote(mesa.string()) + " XDG_CACHE_HOME=" + test::shell_quote(xdg.string()) + " " +
-                  test::shell_quote(ACETATE_CLI_PATH) + " " + args;
+    run.command =
+        "cd " + test::shell_quote(dir.string()) +
+        " && ACETATE_VALIDATION=1 MESA_SHADER_CACHE_DIR=" + test::shell_quote(mesa.string()) +
+        " XDG_CACHE_HOME=" + test::shell_quote(xdg.string()) + " " +
+        test::shell_quote(ACETATE_CLI_PATH) + " " + args;
     const std::string shell = run.command + " >" + test::shell_quote(out_file.string()) + " 2>" +
                               test::shell_quote(err_file.string()) + " </dev/null";
     run.raw_status = std::system(shell.c_str());
@@ -96,7 +97,8 @@ void expect_clean_stderr(const CliRun& run) {
     for (const std::string& line : test::nonempty_lines(run.err)) {
         if (is_unvalidated_plugin_warning(line)) continue;
         EXPECT_EQ(lower(line).find("validation"), std::string::npos)
-            << "validation message on stderr: " << line << "\n" << run.describe();
+            << "validation message on stderr: " << line << "\n"
+            << run.describe();
     }
     for (const char* crash : {"Segmentation", "core dumped", "Aborted", "terminate called",
                               "Assertion", "AddressSanitizer"})
@@ -145,14 +147,17 @@ struct SceneText {
     std::string canvas = R"("width": 64, "height": 32, "background": [0.05, 0.05, 0.06, 1.0])";
     std::string ground_tile = R"({ "image": "a.exr", "rect": [0, 0, 64, 32] })";
     std::string upper_tile = R"({ "image": "b.exr", "rect": [8, 4, 16, 16] })";
-    std::string upper_extra;   // e.g. `, "effects": [...]`
-    std::string root_extra;    // e.g. `, "global_effects": [...]`
+    std::string upper_extra;  // e.g. `, "effects": [...]`
+    std::string root_extra;   // e.g. `, "global_effects": [...]`
 
     std::string text() const {
         return R"({ "format": "acetate-scene/1", "canvas": { )" + canvas + R"( },
-  "floors": [ { "name": "ground", "tiles": [ )" + ground_tile + R"( ] },
-              { "name": "upper", "tiles": [ )" + upper_tile + R"( ])" + upper_extra + R"( } ],
-  "active_floor": 1)" + root_extra + " }\n";
+  "floors": [ { "name": "ground", "tiles": [ )" +
+               ground_tile + R"( ] },
+              { "name": "upper", "tiles": [ )" +
+               upper_tile + R"( ])" + upper_extra + R"( } ],
+  "active_floor": 1)" +
+               root_extra + " }\n";
     }
 };
 
@@ -330,8 +335,7 @@ TEST(CliFloors, OneFilePerFloorWithTheIndexBeforeTheExtension) {
     // Inside the upper tile the two frames differ; outside it they agree.
     const float* in0 = floor0->at(12, 8);
     const float* in1 = floor1->at(12, 8);
-    EXPECT_GT(std::fabs(in0[0] - in1[0]) + std::fabs(in0[1] - in1[1]) +
-                  std::fabs(in0[2] - in1[2]),
+    EXPECT_GT(std::fabs(in0[0] - in1[0]) + std::fabs(in0[1] - in1[1]) + std::fabs(in0[2] - in1[2]),
               0.1f);
     const float* out0 = floor0->at(40, 24);
     const float* out1 = floor1->at(40, 24);
@@ -392,9 +396,9 @@ TEST(CliStats, ReportsLoadFramesAndTargets) {
         ASSERT_TRUE(frame.contains("milliseconds")) << where;
         ASSERT_TRUE(frame["milliseconds"].is_number()) << where;
         EXPECT_GE(frame["milliseconds"].get<double>(), 0.0) << where;
-        for (const char* key : {"passes", "pixels_shaded", "images_loaded",
-                                "render_targets_allocated", "shaders_compiled",
-                                "pipelines_created", "premultiplied_violations"})
+        for (const char* key :
+             {"passes", "pixels_shaded", "images_loaded", "render_targets_allocated",
+              "shaders_compiled", "pipelines_created", "premultiplied_violations"})
             expect_count(frame, key, where);
         if (HasFailure()) return;
         EXPECT_GT(frame["passes"].get<int64_t>(), 0) << where;
@@ -446,7 +450,9 @@ const char* const kViews[] = {"normal",    "floor-alpha", "accum-alpha",
 
 class HarbourView : public ::testing::TestWithParam<const char*> {};
 
-fs::path harbour_scene() { return fs::path(ACETATE_EXAMPLES_DIR) / "harbour" / "scene.json"; }
+fs::path harbour_scene() {
+    return fs::path(ACETATE_EXAMPLES_DIR) / "harbour" / "scene.json";
+}
 
 uint64_t total_violations(const json& stats) {
     uint64_t total = 0;
@@ -466,8 +472,8 @@ TEST_P(HarbourView, RendersToPngAndExrWithoutViolations) {
         const std::string stats_file = "stats" + std::string(ext) + ".json";
         // The harbour's plugins are the build's, validated or not: the host policy is
         // tested in cli_policy_test.cpp.
-        const CliRun run = run_acetate(dir, "render " + test::shell_quote(scene.string()) + " -o " + out +
-                                                " --view " + view + " --stats " + stats_file +
+        const CliRun run = run_acetate(dir, "render " + test::shell_quote(scene.string()) + " -o " +
+                                                out + " --view " + view + " --stats " + stats_file +
                                                 " --allow-unvalidated");
         expect_success(run);
         ASSERT_TRUE(fs::exists(dir / out)) << run.describe();

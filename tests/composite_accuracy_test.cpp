@@ -7,8 +7,9 @@
 // from earlier blends are only scaled by (1 - a) <= 1. So after n roundings the error is at
 // most n * (2^-10 * M + 2^-24), M the largest magnitude the pixel's running value reached.
 // RGBA32F: the blend's own arithmetic now dominates: 1 - a, the product and the sum each round
-// within 2^-24 of the value, so a blend is within 2^-22 relative of the peak. Inputs are quantised to the texture format first,
-// exactly as the upload does, so the reference starts from the same numbers.
+// within 2^-24 of the value, so a blend is within 2^-22 relative of the peak. Inputs are quantised
+// to the texture format first, exactly as the upload does, so the reference starts from the same
+// numbers.
 
 #include <Imath/half.h>
 
@@ -55,7 +56,7 @@ ImageRGBA random_premultiplied(uint32_t w, uint32_t h, uint64_t seed, double sca
 }
 
 class CompositeAccuracy : public RenderTest {
-protected:
+  protected:
     // Reference: tiles (integer rects, image size == rect size, so sampling is exact) drawn
     // over a transparent accumulation in order, then over the background. Returns the output
     // and, per pixel, the largest magnitude any intermediate value reached.
@@ -76,7 +77,8 @@ protected:
                         for (int c = 0; c < 4; ++c) src[c] = quantise(img.at(x, y)[c], format);
                         for (int c = 0; c < 4; ++c) {
                             acc[i * 4 + c] = src[c] + acc[i * 4 + c] * (1.0 - src[3]);
-                            peak[i] = std::max({peak[i], std::fabs(acc[i * 4 + c]), std::fabs(src[c])});
+                            peak[i] =
+                                std::max({peak[i], std::fabs(acc[i * 4 + c]), std::fabs(src[c])});
                         }
                     }
                 }
@@ -86,9 +88,11 @@ protected:
         const auto& bg = scene.background;
         for (size_t i = 0; i < peak.size(); ++i) {
             const double a = acc[i * 4 + 3];
-            for (int c = 0; c < 3; ++c) out.pixels[i * 4 + c] = float(acc[i * 4 + c] + bg[c] * bg[3] * (1 - a));
+            for (int c = 0; c < 3; ++c)
+                out.pixels[i * 4 + c] = float(acc[i * 4 + c] + bg[c] * bg[3] * (1 - a));
             out.pixels[i * 4 + 3] = float(a + bg[3] * (1 - a));
-            for (int c = 0; c < 4; ++c) peak[i] = std::max(peak[i], std::fabs(double(out.pixels[i * 4 + c])));
+            for (int c = 0; c < 4; ++c)
+                peak[i] = std::max(peak[i], std::fabs(double(out.pixels[i * 4 + c])));
         }
     }
 
@@ -121,8 +125,9 @@ protected:
                                   << ", tolerance " << tolerance;
             }
         }
-        if (failures) ADD_FAILURE() << failures << " channel values out of tolerance; images in "
-                                    << save_failure_images(name, actual, expected);
+        if (failures)
+            ADD_FAILURE() << failures << " channel values out of tolerance; images in "
+                          << save_failure_images(name, actual, expected);
         RecordProperty("worst_error_over_tolerance", std::to_string(worst_ratio));
         EXPECT_EQ(stats.violations, 0u);
     }

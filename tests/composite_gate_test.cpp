@@ -20,7 +20,8 @@ void expect_pixel(const ImageRGBA& image, uint32_t x, uint32_t y, std::array<flo
                   double tolerance, const char* what) {
     const float* p = image.at(x, y);
     for (int c = 0; c < 4; ++c)
-        EXPECT_NEAR(p[c], want[c], tolerance) << what << " at (" << x << "," << y << ") channel " << c;
+        EXPECT_NEAR(p[c], want[c], tolerance)
+            << what << " at (" << x << "," << y << ") channel " << c;
 }
 
 using CompositeGate = RenderTest;
@@ -115,7 +116,8 @@ TEST_F(CompositeGate, NoWhiteFringeAtAntiAliasedTileEdges) {
     // than the half-float rounding of two blends came from the transparent pixels' white.
     double brightest = 0;
     for (uint32_t y = 0; y < out.height; ++y)
-        for (uint32_t x = 0; x < out.width; ++x) brightest = std::max<double>(brightest, out.at(x, y)[0]);
+        for (uint32_t x = 0; x < out.width; ++x)
+            brightest = std::max<double>(brightest, out.at(x, y)[0]);
     EXPECT_LE(brightest, dark * (1 + 2 * kHalfUlp)) << "white fringe";
     EXPECT_EQ(stats.violations, 0u);
 }

@@ -78,7 +78,8 @@ TEST_F(FloorIsolation, StencilKeepsColourOutsideCoverageOutOfTheAccumulation) {
                 ASSERT_NEAR(p[2], 0.3f, 0.3 / 1024) << "tile at " << x << "," << y;
                 ASSERT_EQ(p[3], 1.0f);
             } else {
-                ASSERT_EQ(p[0], 0.0f) << "uncovered colour reached the accumulation at " << x << "," << y;
+                ASSERT_EQ(p[0], 0.0f)
+                    << "uncovered colour reached the accumulation at " << x << "," << y;
                 ASSERT_EQ(p[3], 0.0f);
             }
         }

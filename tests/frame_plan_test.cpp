@@ -1,12 +1,13 @@
 // Unit tests (no GPU) for the pixel-rect helpers and the frame planner.
 
+#include "render/frame_plan.hpp"
+
 #include <gtest/gtest.h>
 
 #include <ostream>
 #include <vector>
 
 #include "core/pixel_rect.hpp"
-#include "render/frame_plan.hpp"
 
 namespace acetate {
 
@@ -14,7 +15,9 @@ namespace acetate {
 void PrintTo(const PixelRect& r, std::ostream* os) {
     *os << "{" << r.x0 << "," << r.y0 << " .. " << r.x1 << "," << r.y1 << "}";
 }
-void PrintTo(FloorPath path, std::ostream* os) { *os << to_string(path); }
+void PrintTo(FloorPath path, std::ostream* os) {
+    *os << to_string(path);
+}
 
 namespace {
 
@@ -71,14 +74,14 @@ TEST(PixelsCovered, ClipsToTheCanvas) {
 }
 
 TEST(PixelsCovered, RectsFullyOutsideTheCanvasAreEmpty) {
-    EXPECT_TRUE(pixels_covered(100, 0, 10, 10, 64, 32).empty());     // right
-    EXPECT_TRUE(pixels_covered(0, 40, 10, 10, 64, 32).empty());      // below
-    EXPECT_TRUE(pixels_covered(-10, 0, 5, 10, 64, 32).empty());      // left
-    EXPECT_TRUE(pixels_covered(0, -10, 10, 5, 64, 32).empty());      // above
-    EXPECT_TRUE(pixels_covered(64, 0, 10, 10, 64, 32).empty());      // starts on the right edge
-    EXPECT_TRUE(pixels_covered(-10, 0, 10, 10, 64, 32).empty());     // ends on the left edge
-    EXPECT_TRUE(pixels_covered(-10, 0, 10.4, 10, 64, 32).empty());   // ends before centre 0.5
-    EXPECT_TRUE(pixels_covered(63.6, 0, 10, 10, 64, 32).empty());    // starts past centre 63.5
+    EXPECT_TRUE(pixels_covered(100, 0, 10, 10, 64, 32).empty());    // right
+    EXPECT_TRUE(pixels_covered(0, 40, 10, 10, 64, 32).empty());     // below
+    EXPECT_TRUE(pixels_covered(-10, 0, 5, 10, 64, 32).empty());     // left
+    EXPECT_TRUE(pixels_covered(0, -10, 10, 5, 64, 32).empty());     // above
+    EXPECT_TRUE(pixels_covered(64, 0, 10, 10, 64, 32).empty());     // starts on the right edge
+    EXPECT_TRUE(pixels_covered(-10, 0, 10, 10, 64, 32).empty());    // ends on the left edge
+    EXPECT_TRUE(pixels_covered(-10, 0, 10.4, 10, 64, 32).empty());  // ends before centre 0.5
+    EXPECT_TRUE(pixels_covered(63.6, 0, 10, 10, 64, 32).empty());   // starts past centre 63.5
     EXPECT_EQ(pixels_covered(100, 100, 10, 10, 64, 32).area(), 0u);
 }
 
@@ -160,7 +163,9 @@ FloorGeometry floor_of(PixelRect coverage, std::vector<PixelRect> opaque = {},
 }
 
 // A floor whose one tile is opaque everywhere.
-FloorGeometry opaque_floor(PixelRect rect) { return floor_of(rect, {rect}); }
+FloorGeometry opaque_floor(PixelRect rect) {
+    return floor_of(rect, {rect});
+}
 
 TEST(PlanFrame, PlansFloorsZeroToActiveBottomToTop) {
     const std::vector<FloorGeometry> floors{floor_of({0, 0, 64, 32}), floor_of({8, 4, 24, 20}),
@@ -268,9 +273,8 @@ TEST(PlanFrame, TransparentCoverageAboveDoesNotHide) {
 
 TEST(PlanFrame, OpaqueCoverageSplitAcrossTwoFloorsAboveStillHides) {
     // Floor 1 hides the left half of floor 0, floor 2 the right half.
-    const std::vector<FloorGeometry> floors{floor_of({10, 10, 20, 20}),
-                                            opaque_floor({0, 0, 15, 32}),
-                                            opaque_floor({15, 0, 64, 32})};
+    const std::vector<FloorGeometry> floors{
+        floor_of({10, 10, 20, 20}), opaque_floor({0, 0, 15, 32}), opaque_floor({15, 0, 64, 32})};
     const FramePlan plan = plan_frame(kW, kH, floors, 2, PlanOptions{});
     ASSERT_EQ(plan.steps.size(), 3u);
     EXPECT_EQ(plan.steps[0].path, FloorPath::Skipped);
@@ -279,8 +283,7 @@ TEST(PlanFrame, OpaqueCoverageSplitAcrossTwoFloorsAboveStillHides) {
     EXPECT_EQ(plan.steps[2].path, FloorPath::Direct);
 
     // With a one-pixel gap between the halves, floor 0 shows through.
-    const std::vector<FloorGeometry> gap{floor_of({10, 10, 20, 20}),
-                                         opaque_floor({0, 0, 15, 32}),
+    const std::vector<FloorGeometry> gap{floor_of({10, 10, 20, 20}), opaque_floor({0, 0, 15, 32}),
                                          opaque_floor({16, 0, 64, 32})};
     EXPECT_EQ(plan_frame(kW, kH, gap, 2, PlanOptions{}).steps[0].path, FloorPath::Direct);
 }

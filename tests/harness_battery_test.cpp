@@ -10,16 +10,15 @@
 // example pixel of a NaN, the alpha step, the parameter named). colour_at_zero also re-runs
 // one failing case from its reproduce command.
 
-#include <gtest/gtest.h>
-
 #include <Imath/half.h>
-#include <nlohmann/json.hpp>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
@@ -111,8 +110,8 @@ test::CommandResult validate(const fs::path& dir, const fs::path& plugin, const 
         shell_quote(ACETATE_HARNESS_PATH) + " --registry " +
         shell_quote((dir / "registry.json").string()) + " validate " +
         shell_quote(plugin.string()) + " --no-signoffs --report " + shell_quote(report.string()) +
-        " --strictness 1 --jobs 2 --timeout " + std::to_string(timeout) +
-        " --stage alpha-tested " + extra;
+        " --strictness 1 --jobs 2 --timeout " + std::to_string(timeout) + " --stage alpha-tested " +
+        extra;
     return test::run_command(command, dir);
 }
 
@@ -129,15 +128,17 @@ json read_report(const fs::path& report_dir) {
 // ---- what each plugin must give ----------------------------------------------------------
 
 struct Expectation {
-    std::string plugin;              // file stem in ACETATE_HARNESS_PLUGIN_DIR
-    std::set<std::string> failing;   // checks whose worst verdict is FAIL
-    std::set<std::string> skipped;   // checks whose worst verdict is SKIP, by design
-    bool process_failures = false;   // cases are expected to CRASH or TIME OUT (see `extra`)
+    std::string plugin;             // file stem in ACETATE_HARNESS_PLUGIN_DIR
+    std::set<std::string> failing;  // checks whose worst verdict is FAIL
+    std::set<std::string> skipped;  // checks whose worst verdict is SKIP, by design
+    bool process_failures = false;  // cases are expected to CRASH or TIME OUT (see `extra`)
     void (*extra)(const HarnessRun&) = nullptr;  // the plugin's own evidence
-    int timeout = kTimeoutSeconds;   // --timeout
+    int timeout = kTimeoutSeconds;               // --timeout
 };
 
-void PrintTo(const Expectation& e, std::ostream* os) { *os << e.plugin; }
+void PrintTo(const Expectation& e, std::ostream* os) {
+    *os << e.plugin;
+}
 
 // colour_at_zero: rgb (0.25, 0, 0) where a = 0. The example says so; and the failing case
 // re-run alone by its reproduce command gives the same count, while another seed gives the
@@ -202,7 +203,8 @@ void colour_at_zero(const HarnessRun& run) {
 
     // Another run seed: another case seed (and so other parameters and time).
     const fs::path other_dir = run.dir / "other-seed";
-    const test::CommandResult other = validate(run.dir, run.plugin, other_dir, "--seed 2 --case " + id);
+    const test::CommandResult other =
+        validate(run.dir, run.plugin, other_dir, "--seed 2 --case " + id);
     EXPECT_EQ(other.code, 1) << other.describe();
     const json other_report = read_report(other_dir);
     ASSERT_EQ(other_report["cases"].size(), 1u) << other.describe();
@@ -297,7 +299,8 @@ void crash_second_floor(const HarnessRun& run) {
         ASSERT_GT(floors, 0u) << id;
         if (floors >= 2) {
             EXPECT_EQ(c["verdict"], "CRASH") << id << ": " << c.dump(2);
-            EXPECT_TRUE(contains(c["message"].get<std::string>(), "SIGSEGV")) << id << ": " << c["message"];
+            EXPECT_TRUE(contains(c["message"].get<std::string>(), "SIGSEGV"))
+                << id << ": " << c["message"];
             ++crashed;
         } else {
             EXPECT_EQ(c["verdict"], "PASS") << id << ": " << c.dump(2);

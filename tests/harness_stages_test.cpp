@@ -9,11 +9,10 @@
 
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
@@ -64,8 +63,9 @@ class HarnessStages : public ::testing::Test {
 
     // `acetate-harness --registry REGISTRY ARGS` in the test folder.
     CommandResult harness(const std::string& args, const fs::path& registry) const {
-        return test::run_command("cd " + shell_quote(dir_.string()) + " && " + test::harness_environment() +
-                                     " " + shell_quote(ACETATE_HARNESS_PATH) + " --registry " +
+        return test::run_command("cd " + shell_quote(dir_.string()) + " && " +
+                                     test::harness_environment() + " " +
+                                     shell_quote(ACETATE_HARNESS_PATH) + " --registry " +
                                      shell_quote(registry.string()) + " " + args,
                                  dir_);
     }
@@ -108,8 +108,8 @@ class HarnessStages : public ::testing::Test {
     // What the plugin declares, from `acetate-harness describe`.
     json describe(const fs::path& plugin) const {
         const fs::path out = dir_ / "describe.json";
-        const CommandResult run = harness(
-            "describe " + shell_quote(plugin.string()) + " --out " + shell_quote(out.string()));
+        const CommandResult run = harness("describe " + shell_quote(plugin.string()) + " --out " +
+                                          shell_quote(out.string()));
         EXPECT_EQ(run.code, 0) << run.describe();
         return parse_json(test::read_file(out), out.string());
     }
@@ -128,12 +128,12 @@ class HarnessStages : public ::testing::Test {
 
     // `acetate render scene.json -o OUT --plugin-path <the copy's folder> --registry REGISTRY`.
     CommandResult render(const fs::path& out) const {
-        return test::run_command("cd " + shell_quote(dir_.string()) + " && " + test::harness_environment() +
-                                     " " + shell_quote(ACETATE_CLI_PATH) +
-                                     " render scene.json -o " + shell_quote(out.string()) +
-                                     " --plugin-path " + shell_quote(plugins_.string()) +
-                                     " --registry " + shell_quote(registry_.string()),
-                                 dir_);
+        return test::run_command(
+            "cd " + shell_quote(dir_.string()) + " && " + test::harness_environment() + " " +
+                shell_quote(ACETATE_CLI_PATH) + " render scene.json -o " +
+                shell_quote(out.string()) + " --plugin-path " + shell_quote(plugins_.string()) +
+                " --registry " + shell_quote(registry_.string()),
+            dir_);
     }
 
     static json report(const fs::path& report_dir) {
@@ -153,8 +153,8 @@ TEST_F(HarnessStages, ThroughEveryStageToTheHostAndBackAfterARebuild) {
     // Checks pass before any review, but nothing may be recorded.
     {
         SCOPED_TRACE("validate before any review");
-        const CommandResult run =
-            validate(plugin(), registry_, dir_ / "report-unreviewed", "--no-signoffs --stage alpha-tested");
+        const CommandResult run = validate(plugin(), registry_, dir_ / "report-unreviewed",
+                                           "--no-signoffs --stage alpha-tested");
         EXPECT_EQ(run.code, 0) << run.describe();
         EXPECT_TRUE(contains(run.out, "all checks passed")) << run.describe();
         EXPECT_TRUE(contains(run.out, "ALPHA_TESTED: passed, but not recorded")) << run.describe();
@@ -169,7 +169,8 @@ TEST_F(HarnessStages, ThroughEveryStageToTheHostAndBackAfterARebuild) {
         EXPECT_EQ(r["stages"][0]["recorded"], false);
         auto registry = Registry::load(registry_);
         ASSERT_TRUE(registry) << registry.error().message;
-        EXPECT_EQ(registry->effective_stage(kId, kVersion, old_sha, r["source_digest"].get<std::string>()),
+        EXPECT_EQ(registry->effective_stage(kId, kVersion, old_sha,
+                                            r["source_digest"].get<std::string>()),
                   ValidationStage::Unvalidated);
         EXPECT_EQ(registry->find(kId, kVersion), nullptr);
         EXPECT_EQ(stage(registry_), "UNVALIDATED");
@@ -222,8 +223,8 @@ TEST_F(HarnessStages, ThroughEveryStageToTheHostAndBackAfterARebuild) {
         EXPECT_EQ(e["stage"], "INTEGRATED");
         EXPECT_EQ(e["integrated"]["binary_sha256"], old_sha);
 
-        const CommandResult promote =
-            harness("promote " + shell_quote(plugin().string()) + " --by 'Pat Promoter' --notes 'evidence read'");
+        const CommandResult promote = harness("promote " + shell_quote(plugin().string()) +
+                                              " --by 'Pat Promoter' --notes 'evidence read'");
         EXPECT_EQ(promote.code, 0) << promote.describe();
         EXPECT_TRUE(contains(promote.out, "promoted to VALIDATED")) << promote.describe();
         const json after = entry(registry_);
@@ -246,9 +247,7 @@ TEST_F(HarnessStages, ThroughEveryStageToTheHostAndBackAfterARebuild) {
     }
 
     // "Rebuild": one byte more. The registry still holds the old binary; the host refuses this one.
-    {
-        std::ofstream(plugin(), std::ios::binary | std::ios::app).put('\0');
-    }
+    { std::ofstream(plugin(), std::ios::binary | std::ios::app).put('\0'); }
     const std::string new_sha = file_sha256(plugin()).value();
     ASSERT_NE(new_sha, old_sha);
     {
@@ -331,7 +330,8 @@ TEST_F(HarnessStages, CommittedSignOffsTakeAFreshRegistryToValidated) {
     const CommandResult run = validate(plugin(), registry_, dir_ / "report",
                                        "--signoffs " + shell_quote(signoffs.string()));
     EXPECT_EQ(run.code, 0) << run.describe();
-    EXPECT_TRUE(contains(run.out, "imported the committed review by Maintainers")) << run.describe();
+    EXPECT_TRUE(contains(run.out, "imported the committed review by Maintainers"))
+        << run.describe();
     EXPECT_TRUE(contains(run.out, "imported the committed promotion by Maintainers"))
         << run.describe();
     EXPECT_TRUE(contains(run.out, "-> VALIDATED")) << run.describe();
@@ -396,7 +396,8 @@ TEST_F(HarnessStages, BadInputIsOneLine) {
     {
         SCOPED_TRACE("a file that does not exist");
         const fs::path missing = dir_ / "nonexistent.so";
-        const CommandResult run = validate(missing, registry_, dir_ / "report-missing", "--no-signoffs");
+        const CommandResult run =
+            validate(missing, registry_, dir_ / "report-missing", "--no-signoffs");
         EXPECT_EQ(run.code, 1) << run.describe();
         const auto lines = test::nonempty_lines(run.err);
         ASSERT_EQ(lines.size(), 1u) << run.describe();
@@ -418,10 +419,9 @@ TEST_F(HarnessStages, BadInputIsOneLine) {
     }
     {
         SCOPED_TRACE("strictness out of range");
-        const CommandResult run = harness("validate " + shell_quote(plugin().string()) +
-                                          " --no-signoffs --report " +
-                                          shell_quote((dir_ / "report-11").string()) +
-                                          " --strictness 11 --jobs 2 --timeout 10");
+        const CommandResult run = harness(
+            "validate " + shell_quote(plugin().string()) + " --no-signoffs --report " +
+            shell_quote((dir_ / "report-11").string()) + " --strictness 11 --jobs 2 --timeout 10");
         EXPECT_EQ(run.code, 2) << run.describe();
         EXPECT_FALSE(run.err.empty()) << run.describe();
         EXPECT_FALSE(fs::exists(dir_ / "report-11"));

@@ -83,10 +83,10 @@ TEST_F(RenderTest, APassGivenAsSpirvRunsLikeItsGlsl) {
     const std::string body =
         "void main() { vec4 c = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);\n"
         "              out_color = vec4(c.rgb * param_gain, c.a); }\n";
-    auto spirv = compile_glsl("gain", ShaderStage::Fragment,
-                              effect_glsl_preamble(plugin.value()->descriptor, {"previous"},
-                                                   ACETATE_PASS_FULLSCREEN) +
-                                  body);
+    auto spirv = compile_glsl(
+        "gain", ShaderStage::Fragment,
+        effect_glsl_preamble(plugin.value()->descriptor, {"previous"}, ACETATE_PASS_FULLSCREEN) +
+            body);
     ASSERT_TRUE(spirv.ok()) << spirv.error().message;
     const auto file = dir() / "gain.spv";
     std::ofstream(file, std::ios::binary)

@@ -12,7 +12,7 @@ namespace acetate::test {
 namespace {
 
 class LightingTest : public RenderTest {
-protected:
+  protected:
     EffectRef lighting(nlohmann::json params = nlohmann::json::object(), std::string preset = "") {
         EffectRef ref;
         ref.plugin = "acetate.lighting";
@@ -24,9 +24,8 @@ protected:
 
     // The lighting model, written independently of the shader: illumination = ambient +
     // sum of point lights with falloff (1 - (d/r)^2)^2 inside the radius, times (1 - darkness).
-    static double illumination(double x, double y, const std::vector<LightDesc>& lights,
-                               double day, double day_ambient, double night_ambient,
-                               double darkness) {
+    static double illumination(double x, double y, const std::vector<LightDesc>& lights, double day,
+                               double day_ambient, double night_ambient, double darkness) {
         double level = (night_ambient + (day_ambient - night_ambient) * day) * (1 - darkness);
         double sum[3] = {level, level, level};
         for (const LightDesc& l : lights) {
@@ -52,9 +51,11 @@ TEST_F(LightingTest, MatchesTheCpuModelAtSampledPixels) {
             p[3] = a;
         }
     add_tile(scene, floor, tile, {0, 0, 128, 96});
-    scene.floors[floor].lights = {{{40, 30}, 50, {1, 1, 1}, 2.0f}, {{100, 70}, 30, {1, 0.5f, 0.25f}, 1.0f}};
+    scene.floors[floor].lights = {{{40, 30}, 50, {1, 1, 1}, 2.0f},
+                                  {{100, 70}, 30, {1, 0.5f, 0.25f}, 1.0f}};
     const double day = 0.3, day_ambient = 1.0, night_ambient = 0.2, darkness = 0.25;
-    scene.floors[floor].effects = {lighting({{"day", day}, {"day_ambient", day_ambient},
+    scene.floors[floor].effects = {lighting({{"day", day},
+                                             {"day_ambient", day_ambient},
                                              {"night_ambient", night_ambient},
                                              {"darkness", darkness}})};
     auto compositor = load(scene);
@@ -109,7 +110,8 @@ TEST_F(LightingTest, PreservesAlphaExactlyAndKeepsTransparentPixelsZero) {
             // The tile's alpha in half precision, unchanged by the effect.
             ASSERT_EQ(p[3], float(Imath::half(tile.at(x, y)[3]))) << x << "," << y;
             if (tile.at(x, y)[3] == 0.0f)
-                for (int c = 0; c < 3; ++c) ASSERT_EQ(p[c], 0.0f) << "colour at alpha 0, " << x << "," << y;
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_EQ(p[c], 0.0f) << "colour at alpha 0, " << x << "," << y;
         }
     EXPECT_EQ(stats.violations, 0u);
 }

@@ -7,7 +7,7 @@ namespace acetate::test {
 namespace {
 
 class PixelsShaded : public RenderTest {
-protected:
+  protected:
     const FloorFrameReport& floor_report(const FrameStats& stats, uint32_t floor) {
         for (const FloorFrameReport& f : stats.floors)
             if (f.floor == floor) return f;
@@ -84,7 +84,8 @@ TEST_F(PixelsShaded, OptimisedFrameMatchesTheUnoptimisedOne) {
         ImageRGBA image(24, 16);
         for (uint32_t y = 0; y < 16; ++y)
             for (uint32_t x = 0; x < 24; ++x) {
-                const float a = (x + y) % 5 == 0 ? 0.0f : 0.2f + 0.15f * float((x * 7 + y * 3 + f) % 6);
+                const float a =
+                    (x + y) % 5 == 0 ? 0.0f : 0.2f + 0.15f * float((x * 7 + y * 3 + f) % 6);
                 float* p = image.at(x, y);
                 p[0] = a * 0.9f;
                 p[1] = a * 0.1f * float(f);

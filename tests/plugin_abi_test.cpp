@@ -13,7 +13,7 @@ struct BrokenCase {
 };
 
 class PluginAbi : public RenderTest, public ::testing::WithParamInterface<BrokenCase> {
-protected:
+  protected:
     SceneDesc scene_with(const std::string& plugin) {
         SceneDesc scene = make_scene(16, 16);
         const uint32_t floor = add_floor(scene, "ground");
@@ -33,7 +33,8 @@ TEST_P(PluginAbi, IsRefusedClearlyAndTheHostKeepsGoing) {
     const std::string& message = refused.error().message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
     for (const char* part : c.message_has)
-        EXPECT_NE(message.find(part), std::string::npos) << "\"" << part << "\" not in: " << message;
+        EXPECT_NE(message.find(part), std::string::npos)
+            << "\"" << part << "\" not in: " << message;
     // The host is unharmed: a good plugin on the same renderer still works.
     auto good = load(scene_with("acetate.lighting"));
     ASSERT_TRUE(good);
@@ -51,12 +52,13 @@ INSTANTIATE_TEST_SUITE_P(
         BrokenCase{"test.refuses_abi", {"refuses_abi.so", "cannot serve ABI version 1"}},
         BrokenCase{"test.null_descriptor", {"null_descriptor.so", "no descriptor"}},
         BrokenCase{"test.bad_default", {"bad_default.so", "\"strength\"", "default 1.5", "[0, 1]"}},
-        BrokenCase{"test.bad_shader", {"floors[0].effects[0]", "test.bad_shader.broken",
-                                       "undeclared_thing", "bad_shader.so"}},
-        BrokenCase{"test.build_fails", {"floors[0].effects[0]", "build failed",
-                                        "the floor has no water mask"}},
-        BrokenCase{"test.reads_unwritten", {"test.reads_unwritten.combine", "\"blurred\"",
-                                            "no earlier pass writes"}},
+        BrokenCase{"test.bad_shader",
+                   {"floors[0].effects[0]", "test.bad_shader.broken", "undeclared_thing",
+                    "bad_shader.so"}},
+        BrokenCase{"test.build_fails",
+                   {"floors[0].effects[0]", "build failed", "the floor has no water mask"}},
+        BrokenCase{"test.reads_unwritten",
+                   {"test.reads_unwritten.combine", "\"blurred\"", "no earlier pass writes"}},
         BrokenCase{"test.not_installed", {"floors[0].effects[0].plugin", "not found"}}),
     [](const ::testing::TestParamInfo<BrokenCase>& info) {
         std::string name = std::string(info.param.id).substr(5);

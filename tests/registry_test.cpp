@@ -270,7 +270,8 @@ TEST(Registry, BinaryStageAndExplainJudgeTheBinaryAlone) {
     EXPECT_EQ(r.binary_stage(kId, kBinaryB), Stage::Unvalidated);
     EXPECT_EQ(r.explain(kId, kBinaryB),
               "org.acetate.bloom is UNVALIDATED for this binary: recorded only for other "
-              "binaries: 1.2.0 VALIDATED for " + a);
+              "binaries: 1.2.0 VALIDATED for " +
+                  a);
     EXPECT_EQ(r.binary_stage("", kBinaryB), Stage::Unvalidated);
     EXPECT_EQ(r.explain("", kBinaryB), "this binary is UNVALIDATED: no record of it");
     // A plugin the registry never saw; the same binary under another id does not count.
@@ -285,19 +286,22 @@ TEST(Registry, BinaryStageAndExplainJudgeTheBinaryAlone) {
     EXPECT_EQ(r.binary_stage(kId, kBinaryB), Stage::Reviewed);
     EXPECT_EQ(r.explain(kId, kBinaryB),
               "org.acetate.bloom 1.2.0 is REVIEWED for this binary: no ALPHA_TESTED evidence for "
-              "binary " + b);
+              "binary " +
+                  b);
     EXPECT_EQ(r.binary_stage(kId, kBinaryA), Stage::Unvalidated);
     ASSERT_TRUE(
         r.record_evidence(kId, kVersion, kBinaryB, kSource1, Stage::AlphaTested, passing_run()));
     EXPECT_EQ(r.explain(kId, kBinaryB),
               "org.acetate.bloom 1.2.0 is ALPHA_TESTED for this binary: no INTEGRATED evidence "
-              "for binary " + b);
+              "for binary " +
+                  b);
     // Several versions: the highest stage held for this binary counts, and all are listed.
     ASSERT_TRUE(r.record_review(kId, "1.3.0", kBinaryA, kSource2, "carol", ""));
     EXPECT_EQ(r.binary_stage(kId, kBinaryA), Stage::Reviewed);
     EXPECT_EQ(r.explain(kId, sha256_hex("binary C")),
               "org.acetate.bloom is UNVALIDATED for this binary: recorded only for other "
-              "binaries: 1.2.0 ALPHA_TESTED for " + b + ", 1.3.0 REVIEWED for " + a);
+              "binaries: 1.2.0 ALPHA_TESTED for " +
+                  b + ", 1.3.0 REVIEWED for " + a);
 
     // The policy agrees with is_validated for every id and binary asked above.
     for (const std::string& id : {kId, std::string("org.acetate.other")})

@@ -56,8 +56,7 @@ void RenderTest::TearDown() {
         << (messages.size() > messages_before_ ? messages[messages_before_] : "");
 }
 
-SceneDesc RenderTest::make_scene(uint32_t width, uint32_t height,
-                                 std::array<float, 4> background) {
+SceneDesc RenderTest::make_scene(uint32_t width, uint32_t height, std::array<float, 4> background) {
     SceneDesc scene;
     scene.file = dir_ / "scene.json";
     scene.width = width;

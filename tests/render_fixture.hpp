@@ -17,7 +17,7 @@
 namespace acetate::test {
 
 class RenderTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override;
     void TearDown() override;
 
@@ -39,7 +39,7 @@ protected:
     // Renders `floor` and returns the output image; fails the test on error.
     ImageRGBA render(Compositor& compositor, uint32_t floor, FrameStats* stats = nullptr);
 
-private:
+  private:
     size_t messages_before_ = 0;
     std::filesystem::path dir_;
     int files_ = 0;

@@ -1,9 +1,7 @@
 #include "test_files.hpp"
 
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
-
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <atomic>
@@ -68,8 +66,8 @@ std::string harness_environment() {
     std::string env = "ACETATE_VALIDATION=1";
     const std::filesystem::path cache =
         std::filesystem::temp_directory_path() / "acetate-harness-test-cache";
-    for (const auto& [name, sub] : {std::pair{"MESA_SHADER_CACHE_DIR", "mesa"},
-                                    std::pair{"XDG_CACHE_HOME", "xdg"}}) {
+    for (const auto& [name, sub] :
+         {std::pair{"MESA_SHADER_CACHE_DIR", "mesa"}, std::pair{"XDG_CACHE_HOME", "xdg"}}) {
         const char* set = std::getenv(name);
         std::string value = set && *set ? set : (cache / sub).string();
         std::filesystem::create_directories(value);

@@ -10,7 +10,6 @@ namespace {
 
 using WarmSwitch = RenderTest;
 
-
 TEST_F(WarmSwitch, Floors010DoNoWorkAfterLoadAndFrame3EqualsFrame1) {
     SceneDesc scene = make_scene(64, 48, {0.05f, 0.05f, 0.06f, 1});
     for (uint32_t f = 0; f < 3; ++f) {

@@ -9,7 +9,7 @@ namespace {
 using namespace acetate::sdk;
 
 class TintEffect final : public Effect {
-public:
+  public:
     EffectInfo info() const override {
         EffectInfo info;
         info.id = "com.example.tint";
@@ -20,13 +20,24 @@ public:
         info.params = {
             {.name = "strength",
              .description = "How far the colour moves towards the tint: 0 leaves it unchanged.",
-             .default_value = 0.5f, .min_value = 0.0f, .max_value = 1.0f},
-            {.name = "r", .description = "Red factor of the tint (linear).",
-             .default_value = 1.0f, .min_value = 0.0f, .max_value = 1.0f},
-            {.name = "g", .description = "Green factor of the tint (linear).",
-             .default_value = 0.8f, .min_value = 0.0f, .max_value = 1.0f},
-            {.name = "b", .description = "Blue factor of the tint (linear).",
-             .default_value = 0.55f, .min_value = 0.0f, .max_value = 1.0f},
+             .default_value = 0.5f,
+             .min_value = 0.0f,
+             .max_value = 1.0f},
+            {.name = "r",
+             .description = "Red factor of the tint (linear).",
+             .default_value = 1.0f,
+             .min_value = 0.0f,
+             .max_value = 1.0f},
+            {.name = "g",
+             .description = "Green factor of the tint (linear).",
+             .default_value = 0.8f,
+             .min_value = 0.0f,
+             .max_value = 1.0f},
+            {.name = "b",
+             .description = "Blue factor of the tint (linear).",
+             .default_value = 0.55f,
+             .min_value = 0.0f,
+             .max_value = 1.0f},
         };
         info.presets = {
             {"low", {{"strength", 0.25f}}},

@@ -2,12 +2,12 @@
 // (docs/harness.md). validate / review / promote / status for people; describe and run-case are
 // what validate starts its child processes with.
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -33,7 +33,9 @@ int fail(const std::string& message) {
 
 // Children are started from /proc/self/exe: this very binary, even if the file on disk is
 // rebuilt while a run goes on.
-fs::path self_path() { return "/proc/self/exe"; }
+fs::path self_path() {
+    return "/proc/self/exe";
+}
 
 // A child dies with its parent: a harness killed (Ctrl-C, a closed pipe) leaves no case
 // running on without its time limit.
@@ -79,10 +81,10 @@ int run_review(const fs::path& plugin, const fs::path& registry, const std::stri
         registry_markdown_path(registry));
     if (!updated) return fail(updated.error().message);
     auto loaded = Registry::load(registry);
-    const ValidationStage stage = loaded ? loaded->effective_stage(info->id, info->version,
-                                                                   info->binary_sha256,
-                                                                   info->source_digest)
-                                         : ValidationStage::Reviewed;
+    const ValidationStage stage =
+        loaded ? loaded->effective_stage(info->id, info->version, info->binary_sha256,
+                                         info->source_digest)
+               : ValidationStage::Reviewed;
     std::printf("%s %s: review by %s recorded for source %s; now %s (registry %s)\n",
                 info->id.c_str(), info->version.c_str(), reviewer.c_str(),
                 info->source_digest.substr(0, 12).c_str(), to_string(stage),
@@ -98,9 +100,8 @@ int run_promote(const fs::path& plugin, const fs::path& registry, const std::str
         registry,
         [&](Registry& r) -> Result<void> {
             // The promotion vouches for this file: it must be the binary the evidence is for.
-            const ValidationStage stage = r.effective_stage(info->id, info->version,
-                                                            info->binary_sha256,
-                                                            info->source_digest);
+            const ValidationStage stage = r.effective_stage(
+                info->id, info->version, info->binary_sha256, info->source_digest);
             if (stage == ValidationStage::Validated) return {};  // nothing to do; said below
             if (stage != ValidationStage::Integrated)
                 return make_error(
@@ -116,10 +117,11 @@ int run_promote(const fs::path& plugin, const fs::path& registry, const std::str
     auto after = Registry::load(registry);
     const RegistryEntry* entry = after ? after->find(info->id, info->version) : nullptr;
     if (entry && entry->promotion && entry->promotion->by != by)
-        std::printf("%s %s: already VALIDATED for this binary (promoted by %s at %s); nothing "
-                    "recorded\n",
-                    info->id.c_str(), info->version.c_str(), entry->promotion->by.c_str(),
-                    entry->promotion->at.c_str());
+        std::printf(
+            "%s %s: already VALIDATED for this binary (promoted by %s at %s); nothing "
+            "recorded\n",
+            info->id.c_str(), info->version.c_str(), entry->promotion->by.c_str(),
+            entry->promotion->at.c_str());
     else
         std::printf("%s %s: promoted to VALIDATED by %s (registry %s)\n", info->id.c_str(),
                     info->version.c_str(), by.c_str(), registry.string().c_str());
@@ -133,8 +135,8 @@ int run_status(const fs::path& registry_file, bool as_json) {
         auto j = nlohmann::json::parse(registry->to_json());
         j["registry"] = registry_file.string();
         for (auto& entry : j["plugins"]) {
-            const RegistryEntry* e = registry->find(entry["id"].get<std::string>(),
-                                                    entry["version"].get<std::string>());
+            const RegistryEntry* e =
+                registry->find(entry["id"].get<std::string>(), entry["version"].get<std::string>());
             if (e) entry["stage"] = to_string(e->stage());
         }
         std::printf("%s\n", j.dump(2).c_str());
@@ -149,7 +151,9 @@ int run_status(const fs::path& registry_file, bool as_json) {
                 "source", "records");
     for (const RegistryEntry& e : registry->entries()) {
         std::string records;
-        auto add = [&](const std::string& text) { records += (records.empty() ? "" : "; ") + text; };
+        auto add = [&](const std::string& text) {
+            records += (records.empty() ? "" : "; ") + text;
+        };
         if (e.review) add(fmt::format("reviewed by {} {}", e.review->by, e.review->at));
         if (e.alpha_tested) add(fmt::format("alpha-tested {}", e.alpha_tested->at));
         if (e.integrated) add(fmt::format("integrated {}", e.integrated->at));
@@ -185,7 +189,8 @@ int run_case_command(const fs::path& plugin_info, const fs::path& case_file, con
         try {
             return nlohmann::json::parse(in);
         } catch (const nlohmann::json::exception& e) {
-            return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}", file.string(), e.what()));
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("{}: {}", file.string(), e.what()));
         }
     };
     auto info_json = read(plugin_info);
@@ -209,8 +214,9 @@ int main(int argc, char** argv) {
     // Children are reaped with waitpid: a SIGCHLD ignored by whoever started us must not be
     // inherited (the kernel would then reap them itself and every case would look hung).
     signal(SIGCHLD, SIG_DFL);
-    CLI::App app{"acetate-harness: validates Acetate effect plugins and keeps the registry of "
-                 "their validation stages (docs/harness.md)"};
+    CLI::App app{
+        "acetate-harness: validates Acetate effect plugins and keeps the registry of "
+        "their validation stages (docs/harness.md)"};
     app.require_subcommand(1);
     std::optional<fs::path> registry_flag;
     app.add_option("--registry", registry_flag,
@@ -284,7 +290,9 @@ int main(int argc, char** argv) {
                                                           : ValidationStage::Integrated;
             validate.registry = registry;
             validate.self = self_path();
-            validate.signoffs = no_signoffs ? std::nullopt : signoffs_flag ? signoffs_flag : default_signoffs();
+            validate.signoffs = no_signoffs     ? std::nullopt
+                                : signoffs_flag ? signoffs_flag
+                                                : default_signoffs();
             // Absolute: children run with their own folders, and the scenes they write name
             // their images by path.
             validate.report_directory = fs::absolute(

@@ -1,7 +1,6 @@
 // The `acetate` command line. Subcommands and flags are binding: other tools call them.
 
 #include <CLI/CLI.hpp>
-
 #include <charconv>
 #include <cstdio>
 
@@ -17,8 +16,9 @@ int main(int argc, char** argv) {
     cmd->add_option("scenes", render.scenes,
                     "Scene files (acetate-scene/1 JSON), rendered in turn in one process")
         ->required();
-    cmd->add_option("-o,--output", render.output, "Output image: .exr (half, premultiplied, "
-                                                  "linear) or .png (8-bit sRGB, straight alpha)")
+    cmd->add_option("-o,--output", render.output,
+                    "Output image: .exr (half, premultiplied, "
+                    "linear) or .png (8-bit sRGB, straight alpha)")
         ->required();
     auto* floor = cmd->add_option("--floor", render.floor, "Active floor (default: the scene's)");
     cmd->add_option("--floors", floors_list,

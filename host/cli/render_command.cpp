@@ -91,15 +91,19 @@ int run_render(const RenderCommand& command) {
     std::string ext = command.output.extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".exr" && ext != ".png")
-        return fail(fmt::format("-o {}: the output must end in .exr or .png",
-                                command.output.string()));
+        return fail(
+            fmt::format("-o {}: the output must end in .exr or .png", command.output.string()));
     auto view = parse_view(command.view);
     if (!view) return fail(view.error());
     CompositorOptions options;
     options.view = view.value();
-    if (command.format == "rgba16f") options.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    else if (command.format == "rgba32f") options.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    else return fail(fmt::format("--format: expected rgba16f or rgba32f, got \"{}\"", command.format));
+    if (command.format == "rgba16f")
+        options.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    else if (command.format == "rgba32f")
+        options.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    else
+        return fail(
+            fmt::format("--format: expected rgba16f or rgba32f, got \"{}\"", command.format));
 
     // Every scene is parsed and checked before the device starts: bad input fails fast.
     std::vector<SceneDesc> scenes;
@@ -108,8 +112,8 @@ int run_render(const RenderCommand& command) {
         if (!scene) return fail(scene.error());
         for (uint32_t f : command.floors)
             if (f >= scene->floors.size())
-                return fail(fmt::format("--floors: floor {} does not exist in {} (floors 0..{})",
-                                        f, file.string(), scene->floors.size() - 1));
+                return fail(fmt::format("--floors: floor {} does not exist in {} (floors 0..{})", f,
+                                        file.string(), scene->floors.size() - 1));
         if (command.floor && *command.floor >= scene->floors.size())
             return fail(fmt::format("--floor: floor {} does not exist in {} (floors 0..{})",
                                     *command.floor, file.string(), scene->floors.size() - 1));
@@ -134,7 +138,8 @@ int run_render(const RenderCommand& command) {
     std::printf("device: %s\n", (*context)->device_name().c_str());
     RendererOptions renderer_options;
     renderer_options.plugin_directories = PluginLoader::default_directories(command.plugin_paths);
-    if (command.pipeline_cache) renderer_options.pipeline_cache_file = default_pipeline_cache_path();
+    if (command.pipeline_cache)
+        renderer_options.pipeline_cache_file = default_pipeline_cache_path();
     auto renderer = Renderer::create(*context.value(), renderer_options);
     if (!renderer) return fail(renderer.error());
     if (registry)
@@ -152,23 +157,23 @@ int run_render(const RenderCommand& command) {
             // with the other scenes and exits non-zero at the end.
             fail(compositor.error());
             ++failed_scenes;
-            scene_reports.push_back({{"scene", scene.file.string()},
-                                     {"error", compositor.error().message}});
+            scene_reports.push_back(
+                {{"scene", scene.file.string()}, {"error", compositor.error().message}});
             continue;
         }
         const LoadStats& load = (*compositor)->load_stats();
-        std::printf("loaded %s in %.1f ms: %llu images, %llu targets, %llu shaders compiled, "
-                    "%llu pipelines created\n",
-                    scene.file.string().c_str(), load.milliseconds,
-                    (unsigned long long)load.images_loaded,
-                    (unsigned long long)load.targets_allocated,
-                    (unsigned long long)load.shaders_compiled,
-                    (unsigned long long)load.pipelines_created);
+        std::printf(
+            "loaded %s in %.1f ms: %llu images, %llu targets, %llu shaders compiled, "
+            "%llu pipelines created\n",
+            scene.file.string().c_str(), load.milliseconds, (unsigned long long)load.images_loaded,
+            (unsigned long long)load.targets_allocated, (unsigned long long)load.shaders_compiled,
+            (unsigned long long)load.pipelines_created);
         if (load.tile_texel_violations)
             std::fprintf(stderr,
                          "acetate: warning: %s: %llu tile texels have colour at alpha 0 (or "
                          "NaN/Inf); they are dropped\n",
-                         scene.file.string().c_str(), (unsigned long long)load.tile_texel_violations);
+                         scene.file.string().c_str(),
+                         (unsigned long long)load.tile_texel_violations);
 
         std::vector<uint32_t> floors = command.floors;
         if (floors.empty()) floors.push_back(command.floor.value_or(scene.active_floor));
@@ -182,11 +187,12 @@ int run_render(const RenderCommand& command) {
             const auto path = frame_output_path(
                 scene_output_path(command.output, s, several_scenes), floors[i], several_floors);
             if (auto saved = save_image(path, pixels.value()); !saved) return fail(saved.error());
-            std::printf("[%zu/%zu] floor %u: %.2f ms, %u passes, %llu pixels shaded, %llu "
-                        "violations -> %s\n",
-                        i + 1, floors.size(), floors[i], stats->milliseconds, stats->passes,
-                        (unsigned long long)stats->pixels_shaded,
-                        (unsigned long long)stats->violations, path.string().c_str());
+            std::printf(
+                "[%zu/%zu] floor %u: %.2f ms, %u passes, %llu pixels shaded, %llu "
+                "violations -> %s\n",
+                i + 1, floors.size(), floors[i], stats->milliseconds, stats->passes,
+                (unsigned long long)stats->pixels_shaded, (unsigned long long)stats->violations,
+                path.string().c_str());
             frames.push_back(to_json(stats.value()));
         }
         nlohmann::json targets = nlohmann::json::array();

@@ -9,16 +9,16 @@
 namespace acetate {
 
 struct RenderCommand {
-    std::vector<std::filesystem::path> scenes;    // rendered in turn in one process
-    std::filesystem::path output;                 // .exr or .png
-    std::optional<uint32_t> floor;                // --floor N
-    std::vector<uint32_t> floors;                 // --floors 0,1,2,1
-    std::string view = "normal";                  // --view
-    std::string format = "rgba16f";               // --format
-    std::optional<std::filesystem::path> stats;   // --stats FILE
+    std::vector<std::filesystem::path> scenes;        // rendered in turn in one process
+    std::filesystem::path output;                     // .exr or .png
+    std::optional<uint32_t> floor;                    // --floor N
+    std::vector<uint32_t> floors;                     // --floors 0,1,2,1
+    std::string view = "normal";                      // --view
+    std::string format = "rgba16f";                   // --format
+    std::optional<std::filesystem::path> stats;       // --stats FILE
     std::vector<std::filesystem::path> plugin_paths;  // --plugin-path DIR (repeatable)
-    float time = 0;                               // --time SECONDS: what effects animate with
-    bool pipeline_cache = true;                   // --no-pipeline-cache turns the disk cache off
+    float time = 0;                                   // --time SECONDS: what effects animate with
+    bool pipeline_cache = true;  // --no-pipeline-cache turns the disk cache off
     // Host load policy (docs/registry.md, "Host policy"): a plugin is loaded only if the
     // registry has it VALIDATED for its exact binary.
     std::optional<std::filesystem::path> registry;  // --registry FILE, else ACETATE_REGISTRY

@@ -6,13 +6,13 @@
 #include <cstdio>
 #include <cstdlib>
 
-#define ACETATE_CHECK(cond, ...)                                                  \
-    do {                                                                          \
-        if (!(cond)) {                                                            \
-            std::fprintf(stderr, "acetate: contract violated: %s (%s:%d): ", #cond, \
-                         __FILE__, __LINE__);                                     \
-            std::fprintf(stderr, __VA_ARGS__);                                    \
-            std::fprintf(stderr, "\n");                                           \
-            std::abort();                                                         \
-        }                                                                         \
+#define ACETATE_CHECK(cond, ...)                                                              \
+    do {                                                                                      \
+        if (!(cond)) {                                                                        \
+            std::fprintf(stderr, "acetate: contract violated: %s (%s:%d): ", #cond, __FILE__, \
+                         __LINE__);                                                           \
+            std::fprintf(stderr, __VA_ARGS__);                                                \
+            std::fprintf(stderr, "\n");                                                       \
+            std::abort();                                                                     \
+        }                                                                                     \
     } while (0)

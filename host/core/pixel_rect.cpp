@@ -25,8 +25,7 @@ PixelRect intersect(const PixelRect& a, const PixelRect& b) {
 PixelRect bounding_union(const PixelRect& a, const PixelRect& b) {
     if (a.empty()) return b;
     if (b.empty()) return a;
-    return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1),
-            std::max(a.y1, b.y1)};
+    return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
 }
 
 bool covered_by_union(const PixelRect& target, const std::vector<PixelRect>& cover) {

@@ -6,26 +6,37 @@ namespace acetate {
 
 const char* to_string(ErrorCode code) {
     switch (code) {
-        case ErrorCode::InvalidInput: return "invalid input";
-        case ErrorCode::FileNotFound: return "file not found";
-        case ErrorCode::ImageDecode: return "image decode";
-        case ErrorCode::ImageEncode: return "image encode";
-        case ErrorCode::Io: return "i/o";
-        case ErrorCode::VulkanInit: return "vulkan init";
-        case ErrorCode::NoDevice: return "no device";
-        case ErrorCode::DeviceLimit: return "device limit";
-        case ErrorCode::OutOfMemory: return "out of memory";
-        case ErrorCode::ShaderCompile: return "shader compile";
-        case ErrorCode::VulkanCall: return "vulkan call";
+        case ErrorCode::InvalidInput:
+            return "invalid input";
+        case ErrorCode::FileNotFound:
+            return "file not found";
+        case ErrorCode::ImageDecode:
+            return "image decode";
+        case ErrorCode::ImageEncode:
+            return "image encode";
+        case ErrorCode::Io:
+            return "i/o";
+        case ErrorCode::VulkanInit:
+            return "vulkan init";
+        case ErrorCode::NoDevice:
+            return "no device";
+        case ErrorCode::DeviceLimit:
+            return "device limit";
+        case ErrorCode::OutOfMemory:
+            return "out of memory";
+        case ErrorCode::ShaderCompile:
+            return "shader compile";
+        case ErrorCode::VulkanCall:
+            return "vulkan call";
     }
     return "unknown";
 }
 
 Error vk_error(const char* call, VkResult result) {
-    const ErrorCode code = (result == VK_ERROR_OUT_OF_DEVICE_MEMORY ||
-                            result == VK_ERROR_OUT_OF_HOST_MEMORY)
-                               ? ErrorCode::OutOfMemory
-                               : ErrorCode::VulkanCall;
+    const ErrorCode code =
+        (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
+            ? ErrorCode::OutOfMemory
+            : ErrorCode::VulkanCall;
     return make_error(code, fmt::format("{} failed with VkResult {}", call, int(result)), result);
 }
 

@@ -13,17 +13,17 @@
 namespace acetate {
 
 enum class ErrorCode {
-    InvalidInput,    // a scene file, field or argument is malformed
-    FileNotFound,    // a named file does not exist
-    ImageDecode,     // OpenImageIO could not read an image
-    ImageEncode,     // OpenImageIO could not write an image
-    Io,              // other file-system failure
-    VulkanInit,      // instance or device creation failed
-    NoDevice,        // no Vulkan device matches the request
-    DeviceLimit,     // the request exceeds what the device allows (e.g. image size)
-    OutOfMemory,     // a Vulkan allocation failed
-    ShaderCompile,   // glslang rejected a shader
-    VulkanCall,      // any other Vulkan call failed
+    InvalidInput,   // a scene file, field or argument is malformed
+    FileNotFound,   // a named file does not exist
+    ImageDecode,    // OpenImageIO could not read an image
+    ImageEncode,    // OpenImageIO could not write an image
+    Io,             // other file-system failure
+    VulkanInit,     // instance or device creation failed
+    NoDevice,       // no Vulkan device matches the request
+    DeviceLimit,    // the request exceeds what the device allows (e.g. image size)
+    OutOfMemory,    // a Vulkan allocation failed
+    ShaderCompile,  // glslang rejected a shader
+    VulkanCall,     // any other Vulkan call failed
 };
 
 const char* to_string(ErrorCode code);
@@ -42,7 +42,7 @@ inline Error make_error(ErrorCode code, std::string message, VkResult vk = VK_SU
 
 template <class T>
 class [[nodiscard]] Result {
-public:
+  public:
     Result(T value) : state_(std::move(value)) {}
     Result(Error error) : state_(std::move(error)) {}
 
@@ -68,13 +68,13 @@ public:
     T* operator->() { return &value(); }
     T& operator*() { return value(); }
 
-private:
+  private:
     std::variant<T, Error> state_;
 };
 
 template <>
 class [[nodiscard]] Result<void> {
-public:
+  public:
     Result() = default;
     Result(Error error) : error_(std::move(error)), ok_(false) {}
     bool ok() const { return ok_; }
@@ -84,7 +84,7 @@ public:
         return error_;
     }
 
-private:
+  private:
     Error error_;
     bool ok_ = true;
 };
@@ -92,19 +92,18 @@ private:
 }  // namespace acetate
 
 // Propagates an error from an expression returning Result<...>.
-#define ACETATE_TRY(expr)                               \
-    do {                                                \
-        auto acetate_try_result_ = (expr);              \
-        if (!acetate_try_result_.ok())                  \
-            return acetate_try_result_.error();         \
+#define ACETATE_TRY(expr)                                                  \
+    do {                                                                   \
+        auto acetate_try_result_ = (expr);                                 \
+        if (!acetate_try_result_.ok()) return acetate_try_result_.error(); \
     } while (0)
 
 // Checks a VkResult; on failure returns an Error naming the call.
-#define ACETATE_VK(call)                                                                   \
-    do {                                                                                   \
-        VkResult acetate_vk_result_ = (call);                                              \
-        if (acetate_vk_result_ != VK_SUCCESS)                                              \
-            return ::acetate::vk_error(#call, acetate_vk_result_);                         \
+#define ACETATE_VK(call)                                           \
+    do {                                                           \
+        VkResult acetate_vk_result_ = (call);                      \
+        if (acetate_vk_result_ != VK_SUCCESS)                      \
+            return ::acetate::vk_error(#call, acetate_vk_result_); \
     } while (0)
 
 namespace acetate {

@@ -8,6 +8,8 @@
 namespace acetate {
 
 std::string sha256_hex(const void* data, size_t size);
-inline std::string sha256_hex(std::string_view text) { return sha256_hex(text.data(), text.size()); }
+inline std::string sha256_hex(std::string_view text) {
+    return sha256_hex(text.data(), text.size());
+}
 
 }  // namespace acetate

@@ -36,7 +36,8 @@ Error bad(const std::string& where, const std::string& what) {
 
 }  // namespace
 
-Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d, const std::string& where) {
+Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d,
+                                         const std::string& where) {
     if (!d) return bad(where, "the plugin returned no descriptor (NULL)");
     if (d->struct_size < sizeof(AcetateEffectDescriptor))
         return bad(where, fmt::format("struct_size {} is smaller than ABI 1's {}", d->struct_size,
@@ -46,8 +47,9 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d, const
                                       d->abi_version, ACETATE_ABI_VERSION));
     EffectDescriptor out;
     if (!d->id || !is_reverse_dns(d->id))
-        return bad(where, fmt::format("id \"{}\" is not a reverse-DNS name like \"com.example.glow\"",
-                                      d->id ? d->id : "(null)"));
+        return bad(where,
+                   fmt::format("id \"{}\" is not a reverse-DNS name like \"com.example.glow\"",
+                               d->id ? d->id : "(null)"));
     out.id = d->id;
     out.display_name = d->display_name ? d->display_name : out.id;
     out.source_digest = d->source_digest ? d->source_digest : "";
@@ -79,11 +81,14 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d, const
         const std::string field = fmt::format("params[{}] \"{}\"", i, name);
         if (!is_simple_name(name)) return bad(where, field + ": name must match [a-z][a-z0-9_]*");
         if (!names.insert(name).second) return bad(where, field + ": duplicate name");
-        if (p.type > ACETATE_PARAM_BOOL) return bad(where, fmt::format("{}: unknown type {}", field, p.type));
-        if (!std::isfinite(p.default_value) || !std::isfinite(p.min_value) || !std::isfinite(p.max_value))
+        if (p.type > ACETATE_PARAM_BOOL)
+            return bad(where, fmt::format("{}: unknown type {}", field, p.type));
+        if (!std::isfinite(p.default_value) || !std::isfinite(p.min_value) ||
+            !std::isfinite(p.max_value))
             return bad(where, field + ": default, min and max must be finite");
         if (p.min_value > p.max_value)
-            return bad(where, fmt::format("{}: min {} is greater than max {}", field, p.min_value, p.max_value));
+            return bad(where, fmt::format("{}: min {} is greater than max {}", field, p.min_value,
+                                          p.max_value));
         if (p.default_value < p.min_value || p.default_value > p.max_value)
             return bad(where, fmt::format("{}: default {} is outside [{}, {}]", field,
                                           p.default_value, p.min_value, p.max_value));
@@ -102,8 +107,10 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d, const
         const AcetatePresetDesc& preset = d->presets[i];
         const std::string name = preset.name ? preset.name : "";
         if (!kPresets.count(name))
-            return bad(where, fmt::format("presets[{}] \"{}\": expected low, medium, high or ultra", i, name));
-        if (out.presets.count(name)) return bad(where, fmt::format("presets[{}] \"{}\": duplicate", i, name));
+            return bad(where, fmt::format("presets[{}] \"{}\": expected low, medium, high or ultra",
+                                          i, name));
+        if (out.presets.count(name))
+            return bad(where, fmt::format("presets[{}] \"{}\": duplicate", i, name));
         if (preset.value_count && !preset.values)
             return bad(where, fmt::format("presets[{}]: value_count > 0 but values is NULL", i));
         auto& values = out.presets[name];
@@ -111,7 +118,8 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d, const
             const std::string param = preset.values[v].param ? preset.values[v].param : "";
             const int index = out.param_index(param);
             if (index < 0)
-                return bad(where, fmt::format("presets[{}] \"{}\": unknown parameter \"{}\"", i, name, param));
+                return bad(where, fmt::format("presets[{}] \"{}\": unknown parameter \"{}\"", i,
+                                              name, param));
             const EffectParam& p = out.params[size_t(index)];
             const float value = preset.values[v].value;
             if (!(value >= p.min_value && value <= p.max_value))

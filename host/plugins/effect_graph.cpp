@@ -51,7 +51,8 @@ AcetateStatus declare_target(AcetateGraph* g, const AcetateTargetDesc* t) {
 AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
     if (!g) return ACETATE_ERROR_INVALID_ARGUMENT;
     if (!p || p->struct_size < sizeof(AcetatePassDesc))
-        return refuse(g, fmt::format("{}: add_pass with a missing or short AcetatePassDesc", g->label));
+        return refuse(
+            g, fmt::format("{}: add_pass with a missing or short AcetatePassDesc", g->label));
     const std::string name = p->name ? p->name : "";
     const std::string pass = fmt::format("pass \"{}.{}\"", g->label, name);
     if (!is_simple_name(name)) return refuse(g, pass + ": name must match [a-z][a-z0-9_]*");
@@ -61,14 +62,14 @@ AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
         return refuse(g, fmt::format("{}: unknown kind {}", pass, p->kind));
     const bool instanced = p->kind == ACETATE_PASS_INSTANCED_QUADS;
     if (instanced && (p->instance_count == 0 || p->instance_count > (1u << 20)))
-        return refuse(g, fmt::format("{}: instance_count {} is not in 1..1048576", pass,
-                                     p->instance_count));
+        return refuse(
+            g, fmt::format("{}: instance_count {} is not in 1..1048576", pass, p->instance_count));
     const bool has_glsl = p->glsl && *p->glsl;
     if (has_glsl == bool(p->spirv && p->spirv_word_count))
         return refuse(g, pass + ": give exactly one of glsl (non-empty) and spirv");
     if (p->input_count > 8 || (p->input_count && !p->inputs))
-        return refuse(g, fmt::format("{}: {} inputs (at most 8, and inputs must not be NULL)",
-                                     pass, p->input_count));
+        return refuse(g, fmt::format("{}: {} inputs (at most 8, and inputs must not be NULL)", pass,
+                                     p->input_count));
     if (p->blend > ACETATE_BLEND_OVER)
         return refuse(g, fmt::format("{}: unknown blend {}", pass, p->blend));
     GraphPass out;
@@ -83,7 +84,8 @@ AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
         // The driver must never see a malformed module: check the header here (magic number,
         // and the five header words), and glslang-produced modules only are the tested path.
         if (p->spirv_word_count < 5 || p->spirv[0] != 0x07230203u)
-            return refuse(g, pass + ": spirv is not a SPIR-V module (bad magic number or too short)");
+            return refuse(g,
+                          pass + ": spirv is not a SPIR-V module (bad magic number or too short)");
         out.spirv.assign(p->spirv, p->spirv + p->spirv_word_count);
     }
     for (uint32_t i = 0; i < p->input_count; ++i) {
@@ -108,7 +110,8 @@ AcetateStatus add_pass(AcetateGraph* g, const AcetatePassDesc* p) {
                                          "nor a declared target",
                                          pass, input));
         } else if (!g->written.count(input)) {
-            return refuse(g, fmt::format("{} reads \"{}\", which no earlier pass writes", pass, input));
+            return refuse(
+                g, fmt::format("{} reads \"{}\", which no earlier pass writes", pass, input));
         }
         if (std::count(out.inputs.begin(), out.inputs.end(), input))
             return refuse(g, fmt::format("{} reads \"{}\" twice", pass, input));
@@ -154,11 +157,12 @@ AcetateStatus add_texture(AcetateGraph* g, const AcetateTextureDesc* t) {
     for (const GraphTexture& earlier : g->graph.textures)
         if (earlier.name == name) return refuse(g, what + ": declared twice");
     if (t->width == 0 || t->height == 0 || t->width > 16384 || t->height > 16384 || !t->rgba)
-        return refuse(g, fmt::format("{}: {}x{} (1..16384 per side, data not NULL)", what,
-                                     t->width, t->height));
+        return refuse(g, fmt::format("{}: {}x{} (1..16384 per side, data not NULL)", what, t->width,
+                                     t->height));
     GraphTexture texture{name, t->width, t->height, {}};
     texture.rgba.assign(t->rgba, t->rgba + size_t(t->width) * t->height * 4);
-    if (!std::all_of(texture.rgba.begin(), texture.rgba.end(), [](float v) { return std::isfinite(v); }))
+    if (!std::all_of(texture.rgba.begin(), texture.rgba.end(),
+                     [](float v) { return std::isfinite(v); }))
         return refuse(g, what + ": holds a value that is not finite");
     g->graph.textures.push_back(std::move(texture));
     return ACETATE_OK;
@@ -181,26 +185,25 @@ AcetateStatus guarded(Body&& body) noexcept {
     }
 }
 
-const AcetateHostApi kHostApi = {
-    sizeof(AcetateHostApi),
-    [](AcetateGraph* g, const AcetateTargetDesc* t) noexcept {
-        return guarded([&] { return declare_target(g, t); });
-    },
-    [](AcetateGraph* g, const AcetatePassDesc* p) noexcept {
-        return guarded([&] { return add_pass(g, p); });
-    },
-    [](AcetateGraph* g, const float* data, uint32_t count) noexcept {
-        return guarded([&] { return set_floor_data(g, data, count); });
-    },
-    [](AcetateGraph* g, const char* message) noexcept {
-        guarded([&] {
-            log(g, message);
-            return ACETATE_OK;
-        });
-    },
-    [](AcetateGraph* g, const AcetateTextureDesc* t) noexcept {
-        return guarded([&] { return add_texture(g, t); });
-    }};
+const AcetateHostApi kHostApi = {sizeof(AcetateHostApi),
+                                 [](AcetateGraph* g, const AcetateTargetDesc* t) noexcept {
+                                     return guarded([&] { return declare_target(g, t); });
+                                 },
+                                 [](AcetateGraph* g, const AcetatePassDesc* p) noexcept {
+                                     return guarded([&] { return add_pass(g, p); });
+                                 },
+                                 [](AcetateGraph* g, const float* data, uint32_t count) noexcept {
+                                     return guarded([&] { return set_floor_data(g, data, count); });
+                                 },
+                                 [](AcetateGraph* g, const char* message) noexcept {
+                                     guarded([&] {
+                                         log(g, message);
+                                         return ACETATE_OK;
+                                     });
+                                 },
+                                 [](AcetateGraph* g, const AcetateTextureDesc* t) noexcept {
+                                     return guarded([&] { return add_texture(g, t); });
+                                 }};
 
 }  // namespace
 

@@ -21,13 +21,13 @@ struct GraphTarget {
 
 struct GraphPass {
     std::string name;
-    std::string glsl;               // the plugin's part (the host adds its declarations)
-    std::vector<uint32_t> spirv;    // or a complete module
+    std::string glsl;             // the plugin's part (the host adds its declarations)
+    std::vector<uint32_t> spirv;  // or a complete module
     std::vector<std::string> inputs;
-    std::string output;             // "result" or a target name
+    std::string output;  // "result" or a target name
     uint32_t blend = ACETATE_BLEND_REPLACE;
     uint32_t kind = ACETATE_PASS_FULLSCREEN;
-    uint32_t instance_count = 0;    // instanced quads
+    uint32_t instance_count = 0;  // instanced quads
     uint32_t instance_data_offset = 0;
 };
 

@@ -1,12 +1,11 @@
 #include "plugins/plugin_loader.hpp"
 
-#include <boost/dll/runtime_symbol_info.hpp>
-#include <boost/dll/shared_library.hpp>
-#include <fmt/format.h>
-
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <unistd.h>
 
+#include <boost/dll/runtime_symbol_info.hpp>
+#include <boost/dll/shared_library.hpp>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -30,7 +29,8 @@ std::vector<std::filesystem::path> PluginLoader::default_directories(
     const std::filesystem::path exe = boost::dll::program_location(ec).string();
     if (!ec) {
         const auto bin = exe.parent_path();
-        out.push_back(bin.parent_path() / ACETATE_INSTALL_LIBDIR / "acetate" / "plugins");  // installed
+        out.push_back(bin.parent_path() / ACETATE_INSTALL_LIBDIR / "acetate" /
+                      "plugins");                      // installed
         out.push_back(bin.parent_path() / "plugins");  // build tree: build/host/acetate
     }
     return out;
@@ -82,17 +82,16 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::open_library(
     const AcetateEffectApi* api = nullptr;
     const AcetateStatus status = entry(ACETATE_ABI_VERSION, &api);
     if (status == ACETATE_ERROR_UNSUPPORTED_ABI)
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: the plugin cannot serve ABI version {}", where,
-                                      ACETATE_ABI_VERSION));
+        return make_error(
+            ErrorCode::InvalidInput,
+            fmt::format("{}: the plugin cannot serve ABI version {}", where, ACETATE_ABI_VERSION));
     if (status != ACETATE_OK)
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: {} failed with status {}", where,
-                                      ACETATE_ENTRY_POINT_NAME, status));
+        return make_error(
+            ErrorCode::InvalidInput,
+            fmt::format("{}: {} failed with status {}", where, ACETATE_ENTRY_POINT_NAME, status));
     if (!api)
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: {} returned no function table", where,
-                                      ACETATE_ENTRY_POINT_NAME));
+        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {} returned no function table",
+                                                               where, ACETATE_ENTRY_POINT_NAME));
     if (api->struct_size < sizeof(AcetateEffectApi) || !api->build || !api->last_error)
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("{}: the function table is incomplete (struct_size {}, "

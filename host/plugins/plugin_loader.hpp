@@ -29,7 +29,7 @@ struct LoadedPlugin {
 };
 
 class PluginLoader {
-public:
+  public:
     // Decides whether a plugin file may be loaded into this process: called once the file is
     // found and before it is loaded (dlopen runs the library's static constructors, so a
     // refused file must never reach it). `id` is the id asked for by load(), or empty for
@@ -38,9 +38,9 @@ public:
     // is what gets loaded if admitted, so a policy that reads its bytes from `contents` judges
     // exactly what runs, even if `file` is replaced meanwhile. An error refuses the file and
     // is returned by load() / load_file() as is.
-    using Admission = std::function<Result<void>(const std::string& id,
-                                                 const std::filesystem::path& file,
-                                                 const std::filesystem::path& contents)>;
+    using Admission =
+        std::function<Result<void>(const std::string& id, const std::filesystem::path& file,
+                                   const std::filesystem::path& contents)>;
 
     // Searches `directories` in order.
     explicit PluginLoader(std::vector<std::filesystem::path> directories);
@@ -69,7 +69,7 @@ public:
     // Plugins loaded so far by this loader, by id.
     size_t loaded_count() const { return by_id_.size(); }
 
-private:
+  private:
     // Asks the admission hook (if any) about `file`, then opens it.
     Result<std::shared_ptr<LoadedPlugin>> admit_and_open(const std::string& id,
                                                          const std::filesystem::path& file);

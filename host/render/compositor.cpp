@@ -11,10 +11,9 @@
 namespace acetate {
 namespace {
 
-constexpr VkImageUsageFlags kTargetUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
-                                           VK_IMAGE_USAGE_SAMPLED_BIT |
-                                           VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                                           VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+constexpr VkImageUsageFlags kTargetUsage =
+    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+    VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 
 double milliseconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -55,12 +54,18 @@ Result<OutputView> parse_view(const std::string& name) {
 
 const char* to_string(OutputView view) {
     switch (view) {
-        case OutputView::Normal: return "normal";
-        case OutputView::FloorAlpha: return "floor-alpha";
-        case OutputView::AccumAlpha: return "accum-alpha";
-        case OutputView::FloorRgb: return "floor-rgb";
-        case OutputView::Violations: return "violations";
-        case OutputView::Isolation: return "isolation";
+        case OutputView::Normal:
+            return "normal";
+        case OutputView::FloorAlpha:
+            return "floor-alpha";
+        case OutputView::AccumAlpha:
+            return "accum-alpha";
+        case OutputView::FloorRgb:
+            return "floor-rgb";
+        case OutputView::Violations:
+            return "violations";
+        case OutputView::Isolation:
+            return "isolation";
     }
     return "?";
 }
@@ -75,13 +80,12 @@ std::array<float, 3> isolation_tint(uint32_t index) {
     const float hue = std::fmod(index * 0.381966f, 1.0f) * 6.0f;
     const float x = 1.0f - std::fabs(std::fmod(hue, 2.0f) - 1.0f);
     const int sector = int(hue);
-    const std::array<std::array<float, 3>, 6> rgb = {{{1, x, 0}, {x, 1, 0}, {0, 1, x},
-                                                      {0, x, 1}, {x, 0, 1}, {1, 0, x}}};
+    const std::array<std::array<float, 3>, 6> rgb = {
+        {{1, x, 0}, {x, 1, 0}, {0, 1, x}, {0, x, 1}, {x, 0, 1}, {1, 0, x}}};
     return rgb[size_t(sector % 6)];
 }
 
-Compositor::Compositor(Renderer& renderer)
-    : renderer_(renderer), context_(renderer.context()) {}
+Compositor::Compositor(Renderer& renderer) : renderer_(renderer), context_(renderer.context()) {}
 
 VkPipeline Compositor::host_pipeline(Stage stage) const {
     return pipelines_->pipeline(stage, options_.format);
@@ -98,8 +102,8 @@ Result<void> Compositor::create_effects(const SceneDesc& scene) {
         }
     }
     for (const EffectRef& ref : scene.global_effects) {
-        auto instance = create_effect_instance(renderer_, scene, ref, -1, options_.format,
-                                               effect_targets_);
+        auto instance =
+            create_effect_instance(renderer_, scene, ref, -1, options_.format, effect_targets_);
         if (!instance) return instance.error();
         global_effects_.push_back(std::move(instance.value()));
     }
@@ -127,8 +131,9 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
                                       scene.file.string(), scene.width, scene.height,
                                       context.device_name(), max_dim));
     if (scene.floors.empty())
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: floors: at least one floor is needed", scene.file.string()));
+        return make_error(
+            ErrorCode::InvalidInput,
+            fmt::format("{}: floors: at least one floor is needed", scene.file.string()));
 
     std::unique_ptr<Compositor> out(new Compositor(renderer));
     out->options_ = options;
@@ -138,8 +143,7 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
     out->pipelines_ = &renderer.host_pipelines();
     ACETATE_TRY(out->create_effects(scene));
 
-    auto resources =
-        SceneResources::load(context, scene, options.format, out->options_.mask_kinds);
+    auto resources = SceneResources::load(context, scene, options.format, out->options_.mask_kinds);
     if (!resources) return resources.error();
     out->resources_ = std::move(resources.value());
     ACETATE_TRY(out->create_targets(scene));
@@ -167,9 +171,9 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
     ACETATE_TRY(out->warm_pipelines());
 
     const ResourceCounters used = delta(context.counters(), before);
-    out->load_stats_ = {milliseconds_since(start), used.images_loaded, used.targets_allocated,
-                        used.shaders_compiled, used.pipelines_created,
-                        out->resources_->tile_texel_violations()};
+    out->load_stats_ = {milliseconds_since(start), used.images_loaded,
+                        used.targets_allocated,    used.shaders_compiled,
+                        used.pipelines_created,    out->resources_->tile_texel_violations()};
     return out;
 }
 
@@ -192,15 +196,17 @@ bool Compositor::needs_floor_target() const {
 Result<void> Compositor::create_targets(const SceneDesc& scene) {
     const std::string where = scene.file.string() + ": canvas";
     auto wrap = [&](Result<GpuImage> r) -> Result<GpuImage> {
-        if (!r) return make_error(r.error().code, where + ": " + r.error().message, r.error().vk_result);
+        if (!r)
+            return make_error(r.error().code, where + ": " + r.error().message,
+                              r.error().vk_result);
         return r;
     };
     auto accumulation = wrap(GpuImage::create(context_, "accumulation", width_, height_,
                                               options_.format, kTargetUsage, true));
     if (!accumulation) return accumulation.error();
     accumulation_ = std::move(accumulation.value());
-    auto output = wrap(GpuImage::create(context_, "output", width_, height_, options_.format,
-                                        kTargetUsage, true));
+    auto output = wrap(
+        GpuImage::create(context_, "output", width_, height_, options_.format, kTargetUsage, true));
     if (!output) return output.error();
     output_ = std::move(output.value());
     if (needs_floor_target()) {
@@ -208,11 +214,9 @@ Result<void> Compositor::create_targets(const SceneDesc& scene) {
                                            options_.format, kTargetUsage, true));
         if (!color) return color.error();
         floor_color_ = std::move(color.value());
-        auto stencil = wrap(GpuImage::create(context_, "floor.stencil", width_, height_,
-                                             context_.stencil_format(),
-                                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
-                                                 VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                             true));
+        auto stencil = wrap(GpuImage::create(
+            context_, "floor.stencil", width_, height_, context_.stencil_format(),
+            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, true));
         if (!stencil) return stencil.error();
         floor_stencil_ = std::move(stencil.value());
     }
@@ -321,10 +325,12 @@ Result<void> Compositor::warm_pipelines() {
         if (floor_color_) {
             for (const GpuImage* texture : textures)
                 draw_one_pixel(cmd, Stage::TileToTarget, *floor_color_, true, texture->view());
-            if (options_.inject) draw_one_pixel(cmd, inject_stage(), *floor_color_, true, output_.view());
+            if (options_.inject)
+                draw_one_pixel(cmd, inject_stage(), *floor_color_, true, output_.view());
             draw_one_pixel(cmd, Stage::Composite, accumulation_, true, output_.view());
             if (std::any_of(floor_effects_.begin(), floor_effects_.end(), [](const auto& f) {
-                    return std::any_of(f.begin(), f.end(), [](const auto& e) { return e->expanding; });
+                    return std::any_of(f.begin(), f.end(),
+                                       [](const auto& e) { return e->expanding; });
                 }))
                 draw_one_pixel(cmd, Stage::CompositeByAlpha, accumulation_, true, output_.view());
         }
@@ -362,8 +368,8 @@ void Compositor::set_scissor(VkCommandBuffer cmd, const PixelRect& rect) {
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-void Compositor::bind(VkCommandBuffer cmd, Stage stage, VkImageView primary,
-                      VkImageView secondary, VkSampler sampler) {
+void Compositor::bind(VkCommandBuffer cmd, Stage stage, VkImageView primary, VkImageView secondary,
+                      VkSampler sampler) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, host_pipeline(stage));
     VkDescriptorImageInfo images[2] = {
         {sampler, primary, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
@@ -374,13 +380,15 @@ void Compositor::bind(VkCommandBuffer cmd, Stage stage, VkImageView primary,
         writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
         writes[i].dstBinding = i;
         writes[i].descriptorCount = 1;
-        writes[i].descriptorType = i < 2 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
-                                         : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        if (i < 2) writes[i].pImageInfo = &images[i];
-        else writes[i].pBufferInfo = &buffer;
+        writes[i].descriptorType =
+            i < 2 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        if (i < 2)
+            writes[i].pImageInfo = &images[i];
+        else
+            writes[i].pBufferInfo = &buffer;
     }
-    context_.push_descriptor_fn()(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_->layout(), 0,
-                                  3, writes);
+    context_.push_descriptor_fn()(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_->layout(), 0, 3,
+                                  writes);
 }
 
 void Compositor::draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor,
@@ -391,8 +399,7 @@ void Compositor::draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor,
     for (const LoadedTile& tile : loaded.tiles) {
         const PixelRect shaded = intersect(tile.pixels, scissor);
         if (shaded.empty()) continue;
-        bind(cmd, stage, tile.texture->view(), tile.texture->view(),
-             pipelines_->linear_sampler());
+        bind(cmd, stage, tile.texture->view(), tile.texture->view(), pipelines_->linear_sampler());
         StagePushConstants push;
         push.rect[0] = float(tile.rect.x);
         push.rect[1] = float(tile.rect.y);
@@ -404,8 +411,8 @@ void Compositor::draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor,
         push.canvas[0] = float(width_);
         push.canvas[1] = float(height_);
         push.floor_index = floor;
-        push.mode = (options_.view == OutputView::Isolation ? 1u : 0u) |
-                    (tile.one_to_one ? 2u : 0u);
+        push.mode =
+            (options_.view == OutputView::Isolation ? 1u : 0u) | (tile.one_to_one ? 2u : 0u);
         vkCmdPushConstants(cmd, pipelines_->layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(push), &push);
@@ -432,8 +439,7 @@ void Compositor::record_floor_direct(VkCommandBuffer cmd, const FloorStep& step,
 }
 
 void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step,
-                                             bool clear_all, float time,
-                                             FloorFrameReport& report) {
+                                             bool clear_all, float time, FloorFrameReport& report) {
     GpuImage& color = *floor_color_;
     const auto& effects = floor_effects_[step.floor];
     const bool expanding =
@@ -457,7 +463,8 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     // The clear covers the render area only; debug views read the whole target, so then the
     // whole target is cleared.
-    info.renderArea = to_vk(clear_all ? PixelRect{0, 0, int64_t(width_), int64_t(height_)} : step.scissor);
+    info.renderArea =
+        to_vk(clear_all ? PixelRect{0, 0, int64_t(width_), int64_t(height_)} : step.scissor);
     info.layerCount = 1;
     info.colorAttachmentCount = 1;
     info.pColorAttachments = &color_info;
@@ -542,7 +549,8 @@ void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, f
     next->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(cmd, next->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+    vkCmdClearColorImage(cmd, next->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
+                         &range);
     FloorFrameReport report;
     report.floor = UINT32_MAX;
     report.path = "global";
@@ -567,7 +575,8 @@ void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, f
 
 void Compositor::record_output(VkCommandBuffer cmd, FrameStats& stats) {
     GpuImage& accumulation = final_accumulation_ ? *final_accumulation_ : accumulation_;
-    GpuImage* floor_image = viewed_floor_ ? viewed_floor_ : (floor_color_ ? &*floor_color_ : nullptr);
+    GpuImage* floor_image =
+        viewed_floor_ ? viewed_floor_ : (floor_color_ ? &*floor_color_ : nullptr);
     accumulation.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     const bool floor_view = view_reads_floor_target(options_.view) && floor_image;
     if (floor_view) floor_image->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -604,8 +613,8 @@ void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameS
     accumulation_.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdClearColorImage(cmd, accumulation_.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
-                         1, &range);
+    vkCmdClearColorImage(cmd, accumulation_.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
+                         &range);
     const bool floor_view = view_reads_floor_target(options_.view);
     for (const FloorStep& step : plan.steps) {
         FloorFrameReport report;
@@ -636,11 +645,11 @@ void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameS
 
 Result<FrameStats> Compositor::render(uint32_t active_floor, float time) {
     if (active_floor >= floor_count())
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: active floor {} does not exist (the scene has {} "
-                                      "floors, 0..{})",
-                                      scene_.file.string(), active_floor, floor_count(),
-                                      floor_count() - 1));
+        return make_error(
+            ErrorCode::InvalidInput,
+            fmt::format("{}: active floor {} does not exist (the scene has {} "
+                        "floors, 0..{})",
+                        scene_.file.string(), active_floor, floor_count(), floor_count() - 1));
     if (view_reads_floor_target(options_.view) && !floor_color_)
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("view \"{}\" needs a floor target; load the scene with it",
@@ -672,7 +681,9 @@ Result<FrameStats> Compositor::render(uint32_t active_floor, float time) {
     return stats;
 }
 
-Result<ImageRGBA> Compositor::read_output() { return read_back_image(context_, output_); }
+Result<ImageRGBA> Compositor::read_output() {
+    return read_back_image(context_, output_);
+}
 Result<ImageRGBA> Compositor::read_accumulation() {
     return read_back_image(context_, final_accumulation_ ? *final_accumulation_ : accumulation_);
 }
@@ -704,8 +715,8 @@ std::vector<TargetInfo> Compositor::targets_held() const {
 std::vector<TargetInfo> Compositor::images_held() const {
     std::vector<TargetInfo> out = targets_held();
     for (const GpuImage* image : resources_->images())
-        out.push_back({image->name(), format_name(image->format()), image->width(),
-                       image->height(), image->bytes()});
+        out.push_back({image->name(), format_name(image->format()), image->width(), image->height(),
+                       image->bytes()});
     return out;
 }
 

@@ -43,7 +43,7 @@ std::array<float, 3> isolation_tint(uint32_t index);
 struct CompositorOptions {
     VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;  // targets and textures; or RGBA32F
     OutputView view = OutputView::Normal;
-    PlanOptions plan;                 // optimisations; all on by default
+    PlanOptions plan;                  // optimisations; all on by default
     std::set<std::string> mask_kinds;  // mask kinds some effect needs (composited at load)
     // Test hook: after a floor's tiles, paint a colour into its target, inside or outside its
     // coverage, as a contract-breaking effect would. Forces floor targets.
@@ -55,7 +55,7 @@ struct CompositorOptions {
 };
 
 class Compositor {
-public:
+  public:
     // Loads the plugins the scene names (only those), builds their instances, loads images,
     // composites the masks effects need, allocates targets, creates and warms every pipeline.
     // Errors name the scene file and field (e.g. a canvas over the device limit).
@@ -100,7 +100,7 @@ public:
     // Every GPU image held, targets and scene textures and masks alike.
     std::vector<TargetInfo> images_held() const;
 
-private:
+  private:
     Compositor(Renderer& renderer);
     Result<void> create_effects(const SceneDesc& scene);
     void record_global_effects(VkCommandBuffer cmd, FrameStats& stats, float time);

@@ -27,7 +27,8 @@ std::string effect_glsl_preamble(const EffectDescriptor& effect,
         "    vec4 acetate_canvas;   // width, height, 1/width, 1/height\n"
         "    vec4 acetate_output;   // this pass's output: width, height, 1/width, 1/height\n"
         "    vec4 acetate_misc;     // time (s), floor index (-1: global)\n";
-    out += fmt::format("    vec4 acetate_params[{}];\n}};\n", std::max<size_t>(1, effect.params.size()));
+    out += fmt::format("    vec4 acetate_params[{}];\n}};\n",
+                       std::max<size_t>(1, effect.params.size()));
     out += "#define acetate_time (acetate_misc.x)\n#define acetate_floor (int(acetate_misc.y))\n";
     for (size_t i = 0; i < effect.params.size(); ++i)
         out += fmt::format("#define param_{} (acetate_params[{}].x)\n", effect.params[i].name, i);
@@ -39,8 +40,9 @@ std::string effect_glsl_preamble(const EffectDescriptor& effect,
         "floor_data[]; }};\n",
         EffectPipelines::kFloorDataBinding);
     if (kind == ACETATE_PASS_INSTANCED_QUADS)
-        out += "layout(location = 0) in vec2 acetate_uv;\n"
-               "layout(location = 1) flat in int acetate_instance;\n";
+        out +=
+            "layout(location = 0) in vec2 acetate_uv;\n"
+            "layout(location = 1) flat in int acetate_instance;\n";
     out += "layout(location = 0) out vec4 out_color;\n#line 1\n";
     return out;
 }
@@ -73,9 +75,9 @@ Result<std::unique_ptr<EffectPipelines>> EffectPipelines::create(VulkanContext& 
         VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     ACETATE_VK(vkCreateSampler(device, &sampler, nullptr, &out->sampler_));
 
-    auto blank = GpuImage::create(context, "effect.blank", 1, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
-                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                  false);
+    auto blank =
+        GpuImage::create(context, "effect.blank", 1, 1, VK_FORMAT_R16G16B16A16_SFLOAT,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, false);
     if (!blank) return blank.error();
     out->blank_ = std::move(blank.value());
     ACETATE_TRY(upload_image(context, out->blank_, ImageRGBA(1, 1)));
@@ -102,8 +104,8 @@ Result<VkPipeline> EffectPipelines::pipeline(const std::vector<uint32_t>& fragme
                     int(format), blend, kind);
     return pool_.pipeline(key, [&](VkPipelineCache cache) -> Result<VkPipeline> {
         const char* vertex_name = instanced ? "instanced_quad.vert" : "fullscreen.vert";
-        auto vertex_spirv = pool_.spirv(vertex_name, ShaderStage::Vertex,
-                                        embedded_shader(vertex_name));
+        auto vertex_spirv =
+            pool_.spirv(vertex_name, ShaderStage::Vertex, embedded_shader(vertex_name));
         if (!vertex_spirv) return vertex_spirv.error();
         auto vert = pool_.module(*vertex_spirv.value());
         if (!vert) return vert.error();
@@ -115,8 +117,8 @@ Result<VkPipeline> EffectPipelines::pipeline(const std::vector<uint32_t>& fragme
         GraphicsPipelineDesc desc;
         desc.vertex = vert.value();
         desc.fragment = frag.value();
-        desc.topology = instanced ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP
-                                  : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+        desc.topology =
+            instanced ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
         desc.color_format = format;
         desc.blend = blend == ACETATE_BLEND_ADD    ? BlendMode::Add
                      : blend == ACETATE_BLEND_OVER ? BlendMode::Over

@@ -21,7 +21,7 @@ class VulkanContext;
 class PipelinePool;
 
 class EffectPipelines {
-public:
+  public:
     static constexpr uint32_t kMaxInputs = 8;
     static constexpr uint32_t kFrameBinding = 0;
     static constexpr uint32_t kFirstInputBinding = 1;
@@ -41,7 +41,7 @@ public:
     const GpuImage& blank_texture() const { return blank_; }
     const GpuBuffer& empty_buffer() const { return empty_buffer_; }
 
-private:
+  private:
     EffectPipelines(VulkanContext& context, PipelinePool& pool) : context_(context), pool_(pool) {}
     VulkanContext& context_;
     PipelinePool& pool_;
@@ -54,9 +54,9 @@ private:
 
 // The frame uniforms as the GLSL block AcetateFrame lays them out (std140).
 struct EffectFrameUniforms {
-    float canvas[4];   // width, height, 1/width, 1/height
-    float output[4];   // this pass's output size and its reciprocal
-    float misc[4];     // time in seconds, floor index (-1 for global), 0, 0
+    float canvas[4];  // width, height, 1/width, 1/height
+    float output[4];  // this pass's output size and its reciprocal
+    float misc[4];    // time in seconds, floor index (-1 for global), 0, 0
     // followed by one vec4 per parameter (value in .x)
 };
 

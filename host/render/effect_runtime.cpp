@@ -14,7 +14,9 @@
 namespace acetate {
 namespace {
 
-uint32_t divided(uint32_t size, uint32_t divisor) { return std::max(1u, (size + divisor - 1) / divisor); }
+uint32_t divided(uint32_t size, uint32_t divisor) {
+    return std::max(1u, (size + divisor - 1) / divisor);
+}
 
 }  // namespace
 
@@ -24,8 +26,8 @@ Result<GpuImage*> EffectTargets::get(VulkanContext& context, const std::string& 
     const std::string key = fmt::format("{}.{}/{}", plugin_id, target.name, target.divisor);
     if (auto found = images_.find(key); found != images_.end()) return found->second.get();
     auto image = GpuImage::create(
-        context, fmt::format("{}.{}", plugin_id, target.name), divided(canvas_width, target.divisor),
-        divided(canvas_height, target.divisor), format,
+        context, fmt::format("{}.{}", plugin_id, target.name),
+        divided(canvas_width, target.divisor), divided(canvas_height, target.divisor), format,
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
             VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
         true);
@@ -62,7 +64,8 @@ Result<std::vector<float>> resolve_params(const EffectDescriptor& d, const Effec
         const auto preset = d.presets.find(ref.preset);
         if (preset == d.presets.end()) {
             std::string known;
-            for (const auto& [name, unused] : d.presets) known += (known.empty() ? "" : ", ") + name;
+            for (const auto& [name, unused] : d.presets)
+                known += (known.empty() ? "" : ", ") + name;
             return make_error(ErrorCode::InvalidInput,
                               fmt::format("{}: {}.preset: plugin \"{}\" has no preset \"{}\" "
                                           "(it has: {})",
@@ -75,22 +78,22 @@ Result<std::vector<float>> resolve_params(const EffectDescriptor& d, const Effec
         if (d.param_index(name) < 0) {
             std::string known;
             for (const EffectParam& p : d.params) known += (known.empty() ? "" : ", ") + p.name;
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: {}.params.{}: plugin \"{}\" has no such parameter "
-                                          "(it has: {})",
-                                          scene_file, ref.where, name, d.id,
-                                          known.empty() ? "none" : known));
+            return make_error(
+                ErrorCode::InvalidInput,
+                fmt::format("{}: {}.params.{}: plugin \"{}\" has no such parameter "
+                            "(it has: {})",
+                            scene_file, ref.where, name, d.id, known.empty() ? "none" : known));
         }
         if (!value.is_number() && !value.is_boolean())
             return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: {}.params.{}: expected a number, got {}",
-                                          scene_file, ref.where, name, value.dump()));
-        const float number = value.is_boolean() ? (value.get<bool>() ? 1.0f : 0.0f)
-                                                : value.get<float>();
+                              fmt::format("{}: {}.params.{}: expected a number, got {}", scene_file,
+                                          ref.where, name, value.dump()));
+        const float number =
+            value.is_boolean() ? (value.get<bool>() ? 1.0f : 0.0f) : value.get<float>();
         if (!std::isfinite(number))
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: {}.params.{}: not a finite number", scene_file,
-                                          ref.where, name));
+            return make_error(
+                ErrorCode::InvalidInput,
+                fmt::format("{}: {}.params.{}: not a finite number", scene_file, ref.where, name));
         set(name, number);
     }
     return values;
@@ -110,10 +113,11 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
     const EffectDescriptor& d = plugin.value()->descriptor;
     const uint32_t wanted = floor < 0 ? ACETATE_SCOPE_GLOBAL : ACETATE_SCOPE_FLOOR;
     if (d.scope != wanted)
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: {}.plugin: \"{}\" is a {} effect; list it in {}", file,
-                                      ref.where, d.id, d.scope == ACETATE_SCOPE_GLOBAL ? "global" : "floor",
-                                      d.scope == ACETATE_SCOPE_GLOBAL ? "global_effects" : "a floor's effects"));
+        return make_error(
+            ErrorCode::InvalidInput,
+            fmt::format("{}: {}.plugin: \"{}\" is a {} effect; list it in {}", file, ref.where,
+                        d.id, d.scope == ACETATE_SCOPE_GLOBAL ? "global" : "floor",
+                        d.scope == ACETATE_SCOPE_GLOBAL ? "global_effects" : "a floor's effects"));
     auto params = resolve_params(d, ref, file);
     if (!params) return params.error();
 
@@ -122,7 +126,8 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
     instance->floor = floor;
     instance->expanding = d.coverage == ACETATE_COVERAGE_EXPANDING;
     instance->params = params.value();
-    instance->label = fmt::format("{}.{}", floor < 0 ? std::string("global") : fmt::format("floor{}", floor), d.id);
+    instance->label = fmt::format(
+        "{}.{}", floor < 0 ? std::string("global") : fmt::format("floor{}", floor), d.id);
 
     // What the plugin is told about its floor.
     std::vector<AcetateLight> lights;
@@ -132,7 +137,9 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
         const FloorDesc& f = scene.floors[size_t(floor)];
         floor_name = f.name;
         for (const LightDesc& l : f.lights)
-            lights.push_back({{l.pos[0], l.pos[1]}, l.radius, {l.color[0], l.color[1], l.color[2]},
+            lights.push_back({{l.pos[0], l.pos[1]},
+                              l.radius,
+                              {l.color[0], l.color[1], l.color[2]},
                               l.intensity});
         for (const std::string& kind : d.masks)
             if (std::any_of(f.tiles.begin(), f.tiles.end(),
@@ -157,12 +164,12 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
         return make_error(graph.error().code,
                           fmt::format("{}: {}: {}", file, ref.where, graph.error().message));
 
-    for (const std::string& line : graph->log) std::fprintf(stderr, "acetate: log: %s\n", line.c_str());
+    for (const std::string& line : graph->log)
+        std::fprintf(stderr, "acetate: log: %s\n", line.c_str());
     for (const GraphTexture& t : graph->textures) {
-        auto image = GpuImage::create(context, fmt::format("{}.{}", instance->label, t.name),
-                                      t.width, t.height, format,
-                                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                      false);
+        auto image = GpuImage::create(
+            context, fmt::format("{}.{}", instance->label, t.name), t.width, t.height, format,
+            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, false);
         if (!image) return image.error();
         ImageRGBA pixels(t.width, t.height);
         pixels.pixels = t.rgba;
@@ -193,10 +200,10 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
             const std::string source = effect_glsl_preamble(d, pass.inputs, pass.kind) + pass.glsl;
             auto compiled = renderer.pool().spirv(runtime.label, ShaderStage::Fragment, source);
             if (!compiled)
-                return make_error(compiled.error().code,
-                                  fmt::format("{}: {}: {} ({})", file, ref.where,
-                                              compiled.error().message,
-                                              instance->plugin->file.string()));
+                return make_error(
+                    compiled.error().code,
+                    fmt::format("{}: {}: {} ({})", file, ref.where, compiled.error().message,
+                                instance->plugin->file.string()));
             spirv = compiled.value();
         } else {
             spirv = std::make_shared<const std::vector<uint32_t>>(pass.spirv);
@@ -233,17 +240,26 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
     VulkanContext& context = renderer.context();
     for (EffectPassRuntime& pass : instance.passes) {
         GpuImage* output = pass.output == "result" ? io.result : instance.targets.at(pass.output);
-        PixelRect scissor = pass.output == "result"
-                                ? io.result_scissor
-                                : PixelRect{0, 0, int64_t(output->width()), int64_t(output->height())};
+        PixelRect scissor = pass.output == "result" ? io.result_scissor
+                                                    : PixelRect{0, 0, int64_t(output->width()),
+                                                                int64_t(output->height())};
         if (io.warm_up) scissor = PixelRect{0, 0, 1, 1};
         // Frame uniforms for this pass (the buffer is host-coherent and frames are synchronous).
         auto* u = static_cast<float*>(pass.uniforms.mapped());
         const float w = float(io.canvas_width), h = float(io.canvas_height);
         const float ow = float(output->width()), oh = float(output->height());
-        const float header[12] = {w, h, 1 / w, 1 / h, ow, oh, 1 / ow, 1 / oh,
-                                  io.time, float(instance.floor),
-                                  float(pass.instance_data_offset), 0};
+        const float header[12] = {w,
+                                  h,
+                                  1 / w,
+                                  1 / h,
+                                  ow,
+                                  oh,
+                                  1 / ow,
+                                  1 / oh,
+                                  io.time,
+                                  float(instance.floor),
+                                  float(pass.instance_data_offset),
+                                  0};
         std::memcpy(u, header, sizeof(header));
         for (size_t i = 0; i < instance.params.size(); ++i) u[12 + i * 4] = instance.params[i];
 
@@ -267,7 +283,8 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
             GpuImage* mutable_image = const_cast<GpuImage*>(image);
             if (mutable_image->layout() != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
                 mutable_image->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-            images.push_back({pipelines.sampler(), image->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+            images.push_back(
+                {pipelines.sampler(), image->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
         }
         while (images.size() < EffectPipelines::kMaxInputs)
             images.push_back({pipelines.sampler(), pipelines.blank_texture().view(),
@@ -318,8 +335,10 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
         writes.push_back(write);
         context.push_descriptor_fn()(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(), 0,
                                      uint32_t(writes.size()), writes.data());
-        if (pass.instance_count) vkCmdDraw(cmd, 4, io.warm_up ? 1 : pass.instance_count, 0, 0);
-        else vkCmdDraw(cmd, 3, 1, 0, 0);
+        if (pass.instance_count)
+            vkCmdDraw(cmd, 4, io.warm_up ? 1 : pass.instance_count, 0, 0);
+        else
+            vkCmdDraw(cmd, 3, 1, 0, 0);
         vkCmdEndRendering(cmd);
         output->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         ++report.passes;

@@ -21,41 +21,41 @@ class VulkanContext;
 class Renderer;
 
 struct EffectPassRuntime {
-    std::string label;               // "floor2.acetate.bloom.down3"
+    std::string label;  // "floor2.acetate.bloom.down3"
     VkPipeline pipeline = VK_NULL_HANDLE;
     std::vector<std::string> inputs;
-    std::string output;              // "result" or a target name
+    std::string output;  // "result" or a target name
     uint32_t blend = 0;
-    uint32_t instance_count = 0;     // instanced quads; 0 for a fullscreen pass
+    uint32_t instance_count = 0;  // instanced quads; 0 for a fullscreen pass
     uint32_t instance_data_offset = 0;
-    uint64_t instanced_pixels = 0;   // sum of the quads' areas on the canvas
-    GpuBuffer uniforms;              // EffectFrameUniforms + one vec4 per parameter
+    uint64_t instanced_pixels = 0;  // sum of the quads' areas on the canvas
+    GpuBuffer uniforms;             // EffectFrameUniforms + one vec4 per parameter
 };
 
 struct EffectInstance {
     std::shared_ptr<LoadedPlugin> plugin;
-    std::string label;               // "floor2.acetate.lighting" / "global.acetate.bloom"
-    int64_t floor = -1;              // -1: global
+    std::string label;   // "floor2.acetate.lighting" / "global.acetate.bloom"
+    int64_t floor = -1;  // -1: global
     bool expanding = false;
-    std::vector<float> params;       // resolved, clamped
+    std::vector<float> params;  // resolved, clamped
     std::vector<EffectPassRuntime> passes;
     std::map<std::string, GpuImage*> targets;  // by declared name; owned by EffectTargets
     std::map<std::string, GpuImage> textures;  // add_texture(), this instance's own
-    GpuBuffer floor_data;            // empty buffer if the plugin set none
+    GpuBuffer floor_data;                      // empty buffer if the plugin set none
     bool has_floor_data = false;
 };
 
 // Intermediate targets shared by instances of one plugin on different floors (floors run one
 // after the other, so one set serves them all): keyed by plugin id, name and divisor.
 class EffectTargets {
-public:
+  public:
     Result<GpuImage*> get(VulkanContext& context, const std::string& plugin_id,
-                          const GraphTarget& target, uint32_t canvas_width,
-                          uint32_t canvas_height, VkFormat format);
+                          const GraphTarget& target, uint32_t canvas_width, uint32_t canvas_height,
+                          VkFormat format);
     std::vector<const GpuImage*> images() const;
     std::vector<GpuImage*> images();
 
-private:
+  private:
     std::map<std::string, std::unique_ptr<GpuImage>> images_;
 };
 
@@ -67,20 +67,22 @@ Result<std::vector<float>> resolve_params(const EffectDescriptor& descriptor, co
 
 // Loads the plugin an EffectRef names, builds its instance for `floor` (-1: global), compiles
 // its passes and allocates what they write.
-Result<std::unique_ptr<EffectInstance>> create_effect_instance(
-    Renderer& renderer, const SceneDesc& scene, const EffectRef& ref, int64_t floor,
-    VkFormat format, EffectTargets& targets);
+Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
+                                                               const SceneDesc& scene,
+                                                               const EffectRef& ref, int64_t floor,
+                                                               VkFormat format,
+                                                               EffectTargets& targets);
 
 // What an instance reads and writes in one frame.
 struct EffectIo {
-    GpuImage* previous = nullptr;     // the floor (or accumulation) so far
-    GpuImage* result = nullptr;       // where "result" goes (the other ping-pong image)
+    GpuImage* previous = nullptr;  // the floor (or accumulation) so far
+    GpuImage* result = nullptr;    // where "result" goes (the other ping-pong image)
     const std::map<std::string, GpuImage>* masks = nullptr;  // the floor's own
     const GpuImage* blank_mask = nullptr;  // scene-size, transparent: for kinds the floor lacks
-    PixelRect result_scissor;         // the area "result" passes shade
+    PixelRect result_scissor;              // the area "result" passes shade
     float time = 0;
     uint32_t canvas_width = 0, canvas_height = 0;
-    bool warm_up = false;             // shade one pixel per pass (load-time pipeline warm-up)
+    bool warm_up = false;  // shade one pixel per pass (load-time pipeline warm-up)
 };
 
 // Records an instance's passes; counts passes and pixels shaded into `report`.

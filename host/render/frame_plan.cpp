@@ -8,9 +8,12 @@ namespace acetate {
 
 const char* to_string(FloorPath path) {
     switch (path) {
-        case FloorPath::Skipped: return "skipped";
-        case FloorPath::Direct: return "direct";
-        case FloorPath::ThroughTarget: return "through-target";
+        case FloorPath::Skipped:
+            return "skipped";
+        case FloorPath::Direct:
+            return "direct";
+        case FloorPath::ThroughTarget:
+            return "through-target";
     }
     return "?";
 }

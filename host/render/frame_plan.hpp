@@ -13,16 +13,16 @@ namespace acetate {
 
 // What the planner needs to know of one floor, computed once at load.
 struct FloorGeometry {
-    PixelRect coverage;                // bounds of all its tiles (empty: covers nothing)
-    std::vector<PixelRect> opaque;     // pixel rects of its tiles whose alpha is 1 everywhere
-    bool needs_target = false;         // it has effects, so it needs a floor target
+    PixelRect coverage;             // bounds of all its tiles (empty: covers nothing)
+    std::vector<PixelRect> opaque;  // pixel rects of its tiles whose alpha is 1 everywhere
+    bool needs_target = false;      // it has effects, so it needs a floor target
 };
 
 struct PlanOptions {
-    bool scissor_to_coverage = true;   // passes shade only the floor's coverage bounds
-    bool cull_hidden_floors = true;    // skip floors under opaque coverage of floors above
-    bool draw_direct = true;           // floors without effects draw straight into the accum
-    int64_t force_target_floor = -1;   // this floor goes through its target (debug views)
+    bool scissor_to_coverage = true;  // passes shade only the floor's coverage bounds
+    bool cull_hidden_floors = true;   // skip floors under opaque coverage of floors above
+    bool draw_direct = true;          // floors without effects draw straight into the accum
+    int64_t force_target_floor = -1;  // this floor goes through its target (debug views)
 };
 
 enum class FloorPath { Skipped, Direct, ThroughTarget };
@@ -31,12 +31,12 @@ const char* to_string(FloorPath path);
 struct FloorStep {
     uint32_t floor = 0;
     FloorPath path = FloorPath::Skipped;
-    PixelRect scissor;                 // the area its passes may shade
-    std::string why;                   // e.g. "hidden under opaque floors above"
+    PixelRect scissor;  // the area its passes may shade
+    std::string why;    // e.g. "hidden under opaque floors above"
 };
 
 struct FramePlan {
-    std::vector<FloorStep> steps;      // floors 0..active, bottom to top
+    std::vector<FloorStep> steps;  // floors 0..active, bottom to top
 };
 
 // Plans floors 0..active_floor of a canvas of width x height.

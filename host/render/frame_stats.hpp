@@ -3,11 +3,10 @@
 // these as JSON.
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/pixel_rect.hpp"
 
@@ -15,7 +14,7 @@ namespace acetate {
 
 struct FloorFrameReport {
     uint32_t floor = 0;
-    std::string path;           // skipped / direct / through-target
+    std::string path;  // skipped / direct / through-target
     std::string why;
     PixelRect scissor;
     uint32_t passes = 0;
@@ -25,9 +24,9 @@ struct FloorFrameReport {
 
 struct FrameStats {
     uint32_t active_floor = 0;
-    double milliseconds = 0;     // record + submit + wait for the frame
-    uint32_t passes = 0;         // draws recorded
-    uint64_t pixels_shaded = 0;  // sum over passes of their scissored area
+    double milliseconds = 0;         // record + submit + wait for the frame
+    uint32_t passes = 0;             // draws recorded
+    uint64_t pixels_shaded = 0;      // sum over passes of their scissored area
     uint64_t images_loaded = 0;      // during this frame (a warm frame: 0)
     uint64_t targets_allocated = 0;  // during this frame
     uint64_t shaders_compiled = 0;   // during this frame

@@ -12,14 +12,22 @@ namespace acetate {
 
 const char* stage_name(Stage stage) {
     switch (stage) {
-        case Stage::TileToTarget: return "tile-to-target";
-        case Stage::TileToAccum: return "tile-to-accumulation";
-        case Stage::Composite: return "composite";
-        case Stage::CompositeByAlpha: return "composite-by-alpha";
-        case Stage::InjectCovered: return "inject-covered";
-        case Stage::InjectUncovered: return "inject-uncovered";
-        case Stage::Output: return "output";
-        case Stage::Count: break;
+        case Stage::TileToTarget:
+            return "tile-to-target";
+        case Stage::TileToAccum:
+            return "tile-to-accumulation";
+        case Stage::Composite:
+            return "composite";
+        case Stage::CompositeByAlpha:
+            return "composite-by-alpha";
+        case Stage::InjectCovered:
+            return "inject-covered";
+        case Stage::InjectUncovered:
+            return "inject-uncovered";
+        case Stage::Output:
+            return "output";
+        case Stage::Count:
+            break;
     }
     return "?";
 }
@@ -132,9 +140,9 @@ Result<VkPipeline> HostPipelines::create_stage(Stage stage, VkFormat color_forma
     const StageState s = state_of(stage);
     auto compile = [&](const char* name) -> Result<VkShaderModule> {
         const std::string_view n(name);
-        auto spirv = pool_.spirv(name, n.ends_with(".vert") ? ShaderStage::Vertex
-                                                            : ShaderStage::Fragment,
-                                 embedded_shader(name));
+        auto spirv =
+            pool_.spirv(name, n.ends_with(".vert") ? ShaderStage::Vertex : ShaderStage::Fragment,
+                        embedded_shader(name));
         if (!spirv) return spirv.error();
         return pool_.module(*spirv.value());
     };
@@ -150,7 +158,8 @@ Result<VkPipeline> HostPipelines::create_stage(Stage stage, VkFormat color_forma
     desc.vertex = vert.value();
     desc.fragment = frag.value();
     const bool is_tile = stage == Stage::TileToTarget || stage == Stage::TileToAccum;
-    desc.topology = is_tile ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    desc.topology =
+        is_tile ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     desc.color_format = color_format;
     if (s.stencil_attachment) desc.stencil_format = context_.stencil_format();
     desc.stencil_test = s.stencil_attachment;

@@ -6,9 +6,9 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
-#include <memory>
 
 #include "core/result.hpp"
 
@@ -19,22 +19,22 @@ class PipelinePool;
 
 // Push constants shared by every host stage (48 bytes; matches the GLSL `Push` blocks).
 struct StagePushConstants {
-    float rect[4] = {0, 0, 0, 0};   // tile rect in scene pixels
-    float tint[4] = {0, 0, 0, 0};   // isolation tint, or the fill colour, or the background
-    float canvas[2] = {0, 0};       // canvas size in pixels
-    uint32_t floor_index = 0;       // violation counter slot; output: the view
-    uint32_t mode = 0;              // tile: tint mode
+    float rect[4] = {0, 0, 0, 0};  // tile rect in scene pixels
+    float tint[4] = {0, 0, 0, 0};  // isolation tint, or the fill colour, or the background
+    float canvas[2] = {0, 0};      // canvas size in pixels
+    uint32_t floor_index = 0;      // violation counter slot; output: the view
+    uint32_t mode = 0;             // tile: tint mode
 };
 static_assert(sizeof(StagePushConstants) == 48);
 
 enum class Stage {
-    TileToTarget,   // tile -> floor target; over blend; writes stencil = 1 where it covers
-    TileToAccum,    // tile -> accumulation directly (floors without effects); over blend
-    Composite,      // floor target -> accumulation; over blend; stencil EQUAL 1
+    TileToTarget,      // tile -> floor target; over blend; writes stencil = 1 where it covers
+    TileToAccum,       // tile -> accumulation directly (floors without effects); over blend
+    Composite,         // floor target -> accumulation; over blend; stencil EQUAL 1
     CompositeByAlpha,  // same, gated by discarding a == 0 (coverage-expanding effects, A1)
-    InjectCovered,    // test hook: colour -> floor target where stencil == 1
-    InjectUncovered,  // test hook: colour -> floor target where stencil != 1
-    Output,         // accumulation -> output image over the background, or a debug view
+    InjectCovered,     // test hook: colour -> floor target where stencil == 1
+    InjectUncovered,   // test hook: colour -> floor target where stencil != 1
+    Output,            // accumulation -> output image over the background, or a debug view
     Count
 };
 const char* stage_name(Stage stage);
@@ -42,7 +42,7 @@ const char* stage_name(Stage stage);
 // Process-wide (one per Renderer): the layout and samplers all host stages share, and their
 // pipelines per stage and colour format, kept in the PipelinePool so they survive scenes.
 class HostPipelines {
-public:
+  public:
     static Result<std::unique_ptr<HostPipelines>> create(VulkanContext& context,
                                                          PipelinePool& pool);
     ~HostPipelines();
@@ -61,7 +61,7 @@ public:
     static constexpr uint32_t kSecondaryImage = 1;  // output: the active floor's target
     static constexpr uint32_t kViolationBuffer = 2;
 
-private:
+  private:
     HostPipelines(VulkanContext& context, PipelinePool& pool) : context_(context), pool_(pool) {}
     Result<void> create_layout();
     Result<VkPipeline> create_stage(Stage stage, VkFormat color_format, VkPipelineCache cache);

@@ -17,10 +17,9 @@ PipelinePool::~PipelinePool() {
 }
 
 Result<std::shared_ptr<const std::vector<uint32_t>>> PipelinePool::spirv(std::string_view name,
-                                                                          ShaderStage stage,
-                                                                          std::string_view source) {
-    const std::string key =
-        sha256_hex(source) + (stage == ShaderStage::Vertex ? ".vert" : ".frag");
+                                                                         ShaderStage stage,
+                                                                         std::string_view source) {
+    const std::string key = sha256_hex(source) + (stage == ShaderStage::Vertex ? ".vert" : ".frag");
     if (auto found = spirv_.find(key); found != spirv_.end()) return found->second;
     auto compiled = compile_glsl(name, stage, source);
     if (!compiled) return compiled.error();

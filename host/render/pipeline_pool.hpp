@@ -21,7 +21,7 @@ namespace acetate {
 class VulkanContext;
 
 class PipelinePool {
-public:
+  public:
     explicit PipelinePool(VulkanContext& context);
     ~PipelinePool();
     PipelinePool(const PipelinePool&) = delete;
@@ -29,8 +29,8 @@ public:
 
     // SPIR-V for this GLSL, compiled on first request only (counted in shaders_compiled).
     Result<std::shared_ptr<const std::vector<uint32_t>>> spirv(std::string_view name,
-                                                                ShaderStage stage,
-                                                                std::string_view source);
+                                                               ShaderStage stage,
+                                                               std::string_view source);
 
     // The pipeline stored under `key`, created by `create` on first request (counted in
     // pipelines_created). `create` receives the pool's VkPipelineCache.
@@ -49,7 +49,7 @@ public:
     // The driver's cache data, for saving.
     Result<std::vector<uint8_t>> cache_data() const;
 
-private:
+  private:
     VulkanContext& context_;
     VkPipelineCache cache_ = VK_NULL_HANDLE;
     std::map<std::string, std::shared_ptr<const std::vector<uint32_t>>> spirv_;

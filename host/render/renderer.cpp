@@ -15,8 +15,8 @@ Result<std::unique_ptr<Renderer>> Renderer::create(VulkanContext& context,
     std::unique_ptr<Renderer> out(new Renderer(context, options));
     out->pool_ = std::make_unique<PipelinePool>(context);
     if (options.pipeline_cache_file) {
-        auto data = read_pipeline_cache(*options.pipeline_cache_file,
-                                        identity_of(context.properties()));
+        auto data =
+            read_pipeline_cache(*options.pipeline_cache_file, identity_of(context.properties()));
         if (!data) {
             // A bad or stale file is never handed to the driver; start empty and overwrite it.
             out->cache_warning_ = data.error().message;

@@ -25,7 +25,7 @@ struct RendererOptions {
 };
 
 class Renderer {
-public:
+  public:
     // Loads the disk pipeline cache if present and valid; a bad or stale file is ignored with a
     // warning on stderr (never handed to the driver).
     static Result<std::unique_ptr<Renderer>> create(VulkanContext& context,
@@ -43,7 +43,7 @@ public:
     // Why the cache file was not used at start-up, if it was not ("" if it was or none existed).
     const std::string& pipeline_cache_warning() const { return cache_warning_; }
 
-private:
+  private:
     Renderer(VulkanContext& context, const RendererOptions& options);
     VulkanContext& context_;
     RendererOptions options_;

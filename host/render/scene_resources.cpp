@@ -30,9 +30,9 @@ bool fully_opaque(const ImageRGBA& image) {
 
 Result<std::unique_ptr<GpuImage>> upload(VulkanContext& context, const std::string& name,
                                          const ImageRGBA& pixels, VkFormat format) {
-    auto image = GpuImage::create(context, name, pixels.width, pixels.height, format,
-                                  VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                  false);
+    auto image =
+        GpuImage::create(context, name, pixels.width, pixels.height, format,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, false);
     if (!image) return image.error();
     auto owned = std::make_unique<GpuImage>(std::move(image.value()));
     ACETATE_TRY(upload_image(context, *owned, pixels));
@@ -74,9 +74,9 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
                 if (!texture) return in_scene(texture.error(), f, t, "image");
                 out->tile_texel_violations_ += count_violations(pixels.value());
                 found = by_path
-                            .emplace(tile.image, Texture{texture.value().get(),
-                                                         fully_opaque(pixels.value()),
-                                                         pixels->width, pixels->height})
+                            .emplace(tile.image,
+                                     Texture{texture.value().get(), fully_opaque(pixels.value()),
+                                             pixels->width, pixels->height})
                             .first;
                 out->textures_.push_back(std::move(texture.value()));
             }
@@ -91,7 +91,8 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
                                 tile.rect.x == std::floor(tile.rect.x) &&
                                 tile.rect.y == std::floor(tile.rect.y);
             floor.geometry.coverage = bounding_union(floor.geometry.coverage, loaded.pixels);
-            if (loaded.opaque && !loaded.pixels.empty()) floor.geometry.opaque.push_back(loaded.pixels);
+            if (loaded.opaque && !loaded.pixels.empty())
+                floor.geometry.opaque.push_back(loaded.pixels);
             floor.tiles.push_back(loaded);
 
             for (const auto& [kind, path] : tile.masks) {
@@ -109,9 +110,9 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
     // One scene-space texture per kind per floor, only for kinds asked for and present.
     for (size_t f = 0; f < scene.floors.size(); ++f) {
         for (const std::string& kind : mask_kinds) {
-            const bool present = std::any_of(
-                scene.floors[f].tiles.begin(), scene.floors[f].tiles.end(),
-                [&](const TileDesc& t) { return t.masks.count(kind) != 0; });
+            const bool present =
+                std::any_of(scene.floors[f].tiles.begin(), scene.floors[f].tiles.end(),
+                            [&](const TileDesc& t) { return t.masks.count(kind) != 0; });
             if (!present) {
                 if (!out->blank_mask_) {
                     auto blank = GpuImage::create(
@@ -125,8 +126,8 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
                 }
                 continue;
             }
-            const ImageRGBA composite = composite_floor_mask(scene.floors[f], kind, scene.width,
-                                                             scene.height, mask_images);
+            const ImageRGBA composite =
+                composite_floor_mask(scene.floors[f], kind, scene.width, scene.height, mask_images);
             auto image = GpuImage::create(
                 context, fmt::format("floor{}.mask.{}", f, kind), scene.width, scene.height,
                 VK_FORMAT_R16G16B16A16_SFLOAT,

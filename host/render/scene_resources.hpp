@@ -4,8 +4,8 @@
 // geometry the frame planner works from. Built once at load; a floor switch touches none of it.
 
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -22,8 +22,8 @@ class VulkanContext;
 struct LoadedTile {
     const GpuImage* texture = nullptr;
     SceneRect rect;
-    PixelRect pixels;  // pixels it shades on the canvas
-    bool opaque = false;  // alpha is 1 at every texel
+    PixelRect pixels;         // pixels it shades on the canvas
+    bool opaque = false;      // alpha is 1 at every texel
     bool one_to_one = false;  // drawn at its own size on whole pixels: texels map to pixels
 };
 
@@ -35,7 +35,7 @@ struct LoadedFloor {
 };
 
 class SceneResources {
-public:
+  public:
     // Decodes and uploads every tile image in `texture_format`, and composites the masks of
     // `mask_kinds` per floor (kinds no effect needs are not even decoded). Errors name the file.
     static Result<std::unique_ptr<SceneResources>> load(VulkanContext& context,
@@ -54,7 +54,7 @@ public:
     // Every GPU image held (textures and masks), for "what does the host hold" reports.
     std::vector<const GpuImage*> images() const;
 
-private:
+  private:
     std::vector<std::unique_ptr<GpuImage>> textures_;
     std::vector<LoadedFloor> floors_;
     uint64_t tile_texel_violations_ = 0;

@@ -29,7 +29,8 @@ ImageRGBA composite_floor_mask(const FloorDesc& floor, const std::string& kind, 
         if (named == tile.masks.end()) continue;
         const auto image = images.find(named->second);
         if (image == images.end()) continue;
-        const PixelRect pixels = pixels_covered(tile.rect.x, tile.rect.y, tile.rect.width, tile.rect.height, width, height);
+        const PixelRect pixels = pixels_covered(tile.rect.x, tile.rect.y, tile.rect.width,
+                                                tile.rect.height, width, height);
         for (int64_t y = pixels.y0; y < pixels.y1; ++y) {
             for (int64_t x = pixels.x0; x < pixels.x1; ++x) {
                 const double u = (x + 0.5 - tile.rect.x) / tile.rect.width;

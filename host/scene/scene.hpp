@@ -6,10 +6,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/result.hpp"
 
@@ -21,9 +20,9 @@ struct SceneRect {
 };
 
 struct TileDesc {
-    std::filesystem::path image;                          // absolute (resolved against the scene file)
-    SceneRect rect;                                       // the image is scaled to fill this
-    std::map<std::string, std::filesystem::path> masks;   // kind ("water", ...) -> absolute path
+    std::filesystem::path image;  // absolute (resolved against the scene file)
+    SceneRect rect;               // the image is scaled to fill this
+    std::map<std::string, std::filesystem::path> masks;  // kind ("water", ...) -> absolute path
 };
 
 struct LightDesc {
@@ -35,10 +34,10 @@ struct LightDesc {
 
 // A reference to an effect plugin; kept for the plugin runtime (issue 3).
 struct EffectRef {
-    std::string plugin;                    // reverse-DNS id, e.g. "acetate.lighting"
+    std::string plugin;  // reverse-DNS id, e.g. "acetate.lighting"
     nlohmann::json params = nlohmann::json::object();
-    std::string preset;                    // empty when not given
-    std::string where;                     // e.g. "floors[1].effects[0]" for error messages
+    std::string preset;  // empty when not given
+    std::string where;   // e.g. "floors[1].effects[0]" for error messages
 };
 
 struct FloorDesc {
@@ -49,12 +48,12 @@ struct FloorDesc {
 };
 
 struct SceneDesc {
-    std::filesystem::path file;           // the scene file, for messages
-    uint32_t width = 0, height = 0;       // canvas size in pixels
+    std::filesystem::path file;                   // the scene file, for messages
+    uint32_t width = 0, height = 0;               // canvas size in pixels
     std::array<float, 4> background{0, 0, 0, 1};  // linear, straight alpha as written
-    std::vector<FloorDesc> floors;        // bottom to top
+    std::vector<FloorDesc> floors;                // bottom to top
     std::vector<EffectRef> global_effects;
-    uint32_t active_floor = 0;            // defaults to the top floor when absent
+    uint32_t active_floor = 0;  // defaults to the top floor when absent
 };
 
 // Reads and validates a scene file. Errors are one line naming the file and the JSON path of

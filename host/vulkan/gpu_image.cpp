@@ -12,25 +12,39 @@ namespace acetate {
 
 uint32_t bytes_per_pixel(VkFormat format) {
     switch (format) {
-        case VK_FORMAT_R8G8B8A8_UNORM: return 4;
-        case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
-        case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
-        case VK_FORMAT_S8_UINT: return 1;
-        case VK_FORMAT_D24_UNORM_S8_UINT: return 4;
-        case VK_FORMAT_D32_SFLOAT_S8_UINT: return 8;
-        default: return 0;
+        case VK_FORMAT_R8G8B8A8_UNORM:
+            return 4;
+        case VK_FORMAT_R16G16B16A16_SFLOAT:
+            return 8;
+        case VK_FORMAT_R32G32B32A32_SFLOAT:
+            return 16;
+        case VK_FORMAT_S8_UINT:
+            return 1;
+        case VK_FORMAT_D24_UNORM_S8_UINT:
+            return 4;
+        case VK_FORMAT_D32_SFLOAT_S8_UINT:
+            return 8;
+        default:
+            return 0;
     }
 }
 
 const char* format_name(VkFormat format) {
     switch (format) {
-        case VK_FORMAT_R8G8B8A8_UNORM: return "rgba8";
-        case VK_FORMAT_R16G16B16A16_SFLOAT: return "rgba16f";
-        case VK_FORMAT_R32G32B32A32_SFLOAT: return "rgba32f";
-        case VK_FORMAT_S8_UINT: return "s8";
-        case VK_FORMAT_D24_UNORM_S8_UINT: return "d24s8";
-        case VK_FORMAT_D32_SFLOAT_S8_UINT: return "d32s8";
-        default: return "other";
+        case VK_FORMAT_R8G8B8A8_UNORM:
+            return "rgba8";
+        case VK_FORMAT_R16G16B16A16_SFLOAT:
+            return "rgba16f";
+        case VK_FORMAT_R32G32B32A32_SFLOAT:
+            return "rgba32f";
+        case VK_FORMAT_S8_UINT:
+            return "s8";
+        case VK_FORMAT_D24_UNORM_S8_UINT:
+            return "d24s8";
+        case VK_FORMAT_D32_SFLOAT_S8_UINT:
+            return "d32s8";
+        default:
+            return "other";
     }
 }
 
@@ -104,9 +118,13 @@ Result<GpuImage> GpuImage::create(VulkanContext& context, std::string name, uint
     return out;
 }
 
-GpuImage::~GpuImage() { release(); }
+GpuImage::~GpuImage() {
+    release();
+}
 
-GpuImage::GpuImage(GpuImage&& other) noexcept { *this = std::move(other); }
+GpuImage::GpuImage(GpuImage&& other) noexcept {
+    *this = std::move(other);
+}
 
 GpuImage& GpuImage::operator=(GpuImage&& other) noexcept {
     if (this != &other) {
@@ -173,27 +191,30 @@ Result<GpuBuffer> GpuBuffer::create(VulkanContext& context, VkDeviceSize size,
     ACETATE_VK(vkCreateBuffer(device, &info, nullptr, &out.buffer_));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, out.buffer_, &req);
-    auto type = context.find_memory_type(
-        req.memoryTypeBits,
-        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    auto type =
+        context.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                         VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     if (!type) return type.error();
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
     alloc.memoryTypeIndex = type.value();
     VkResult r = vkAllocateMemory(device, &alloc, nullptr, &out.memory_);
     if (r != VK_SUCCESS)
-        return make_error(ErrorCode::OutOfMemory,
-                          fmt::format("cannot allocate a {}-byte buffer (VkResult {})", size,
-                                      int(r)),
-                          r);
+        return make_error(
+            ErrorCode::OutOfMemory,
+            fmt::format("cannot allocate a {}-byte buffer (VkResult {})", size, int(r)), r);
     ACETATE_VK(vkBindBufferMemory(device, out.buffer_, out.memory_, 0));
     ACETATE_VK(vkMapMemory(device, out.memory_, 0, VK_WHOLE_SIZE, 0, &out.mapped_));
     return out;
 }
 
-GpuBuffer::~GpuBuffer() { release(); }
+GpuBuffer::~GpuBuffer() {
+    release();
+}
 
-GpuBuffer::GpuBuffer(GpuBuffer&& other) noexcept { *this = std::move(other); }
+GpuBuffer::GpuBuffer(GpuBuffer&& other) noexcept {
+    *this = std::move(other);
+}
 
 GpuBuffer& GpuBuffer::operator=(GpuBuffer&& other) noexcept {
     if (this != &other) {
@@ -227,11 +248,11 @@ void copy_region(VkCommandBuffer cmd, GpuImage& image, VkBuffer buffer, bool to_
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {image.width(), image.height(), 1};
     if (to_image)
-        vkCmdCopyBufferToImage(cmd, buffer, image.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               1, &region);
+        vkCmdCopyBufferToImage(cmd, buffer, image.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                               &region);
     else
-        vkCmdCopyImageToBuffer(cmd, image.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer,
-                               1, &region);
+        vkCmdCopyImageToBuffer(cmd, image.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1,
+                               &region);
 }
 
 }  // namespace
@@ -242,8 +263,8 @@ Result<void> upload_image(VulkanContext& context, GpuImage& image, const ImageRG
                           fmt::format("upload to \"{}\": size mismatch", image.name()));
     const size_t count = size_t(image.width()) * image.height() * 4;
     const uint32_t bpp = bytes_per_pixel(image.format());
-    auto staging = GpuBuffer::create(context, VkDeviceSize(count / 4) * bpp,
-                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    auto staging =
+        GpuBuffer::create(context, VkDeviceSize(count / 4) * bpp, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     if (!staging) return staging.error();
     const float* src = pixels.pixels.data();
     switch (image.format()) {

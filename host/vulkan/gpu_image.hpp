@@ -15,7 +15,7 @@ class VulkanContext;
 
 // A 2D image with its own memory and one view.
 class GpuImage {
-public:
+  public:
     GpuImage() = default;
     // Creates a device-local image; counts one allocated render target when `is_target`.
     // Fails with DeviceLimit when the size exceeds maxImageDimension2D.
@@ -43,7 +43,7 @@ public:
     // each depends on the previous one, so finer stages would buy nothing on lavapipe).
     void transition(VkCommandBuffer cmd, VkImageLayout layout);
 
-private:
+  private:
     void release();
     VulkanContext* context_ = nullptr;
     VkImage image_ = VK_NULL_HANDLE;
@@ -59,7 +59,7 @@ private:
 
 // A host-visible, coherent buffer, persistently mapped.
 class GpuBuffer {
-public:
+  public:
     GpuBuffer() = default;
     static Result<GpuBuffer> create(VulkanContext& context, VkDeviceSize size,
                                     VkBufferUsageFlags usage);
@@ -73,7 +73,7 @@ public:
     void* mapped() const { return mapped_; }
     VkDeviceSize size() const { return size_; }
 
-private:
+  private:
     void release();
     VulkanContext* context_ = nullptr;
     VkBuffer buffer_ = VK_NULL_HANDLE;

@@ -7,16 +7,27 @@ namespace acetate {
 Result<VkPipeline> create_graphics_pipeline(VkDevice device, VkPipelineCache cache,
                                             const GraphicsPipelineDesc& d, const char* what) {
     VkPipelineShaderStageCreateInfo stages[2] = {};
-    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                 VK_SHADER_STAGE_VERTEX_BIT, d.vertex, "main", nullptr};
-    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                 VK_SHADER_STAGE_FRAGMENT_BIT, d.fragment, "main", nullptr};
+    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                 nullptr,
+                 0,
+                 VK_SHADER_STAGE_VERTEX_BIT,
+                 d.vertex,
+                 "main",
+                 nullptr};
+    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                 nullptr,
+                 0,
+                 VK_SHADER_STAGE_FRAGMENT_BIT,
+                 d.fragment,
+                 "main",
+                 nullptr};
     VkPipelineVertexInputStateCreateInfo vertex_input{
         VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     VkPipelineInputAssemblyStateCreateInfo assembly{
         VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     assembly.topology = d.topology;
-    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    VkPipelineViewportStateCreateInfo viewport{
+        VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
     viewport.viewportCount = viewport.scissorCount = 1;
     VkPipelineRasterizationStateCreateInfo raster{
         VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
@@ -43,8 +54,8 @@ Result<VkPipeline> create_graphics_pipeline(VkDevice device, VkPipelineCache cac
     attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                                 VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
     if (d.blend != BlendMode::Replace) {
-        const VkBlendFactor dst = d.blend == BlendMode::Add ? VK_BLEND_FACTOR_ONE
-                                                            : VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        const VkBlendFactor dst =
+            d.blend == BlendMode::Add ? VK_BLEND_FACTOR_ONE : VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
         attachment.blendEnable = VK_TRUE;
         attachment.srcColorBlendFactor = attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
         attachment.dstColorBlendFactor = attachment.dstAlphaBlendFactor = dst;
@@ -67,7 +78,8 @@ Result<VkPipeline> create_graphics_pipeline(VkDevice device, VkPipelineCache cac
     if (d.stencil_format != VK_FORMAT_UNDEFINED) {
         rendering.stencilAttachmentFormat = d.stencil_format;
         // A combined depth/stencil image is attached for both aspects, so say so.
-        if (d.stencil_format != VK_FORMAT_S8_UINT) rendering.depthAttachmentFormat = d.stencil_format;
+        if (d.stencil_format != VK_FORMAT_S8_UINT)
+            rendering.depthAttachmentFormat = d.stencil_format;
     }
 
     VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
@@ -86,10 +98,9 @@ Result<VkPipeline> create_graphics_pipeline(VkDevice device, VkPipelineCache cac
     VkPipeline pipeline = VK_NULL_HANDLE;
     const VkResult r = vkCreateGraphicsPipelines(device, cache, 1, &info, nullptr, &pipeline);
     if (r != VK_SUCCESS)
-        return make_error(ErrorCode::VulkanCall,
-                          fmt::format("creating the \"{}\" pipeline failed (VkResult {})", what,
-                                      int(r)),
-                          r);
+        return make_error(
+            ErrorCode::VulkanCall,
+            fmt::format("creating the \"{}\" pipeline failed (VkResult {})", what, int(r)), r);
     return pipeline;
 }
 

@@ -22,9 +22,9 @@ struct GraphicsPipelineDesc {
     VkFormat color_format = VK_FORMAT_UNDEFINED;
     // A stencil attachment of this format (and its depth aspect, for combined formats), or none.
     VkFormat stencil_format = VK_FORMAT_UNDEFINED;
-    bool stencil_test = false;                        // compare against reference 1
+    bool stencil_test = false;  // compare against reference 1
     VkCompareOp stencil_compare = VK_COMPARE_OP_ALWAYS;
-    bool stencil_write = false;                       // write 1 where fragments pass
+    bool stencil_write = false;  // write 1 where fragments pass
     BlendMode blend = BlendMode::Replace;
     VkPipelineLayout layout = VK_NULL_HANDLE;
 };

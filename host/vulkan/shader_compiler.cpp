@@ -46,9 +46,8 @@ Result<std::vector<uint32_t>> compile_glsl(std::string_view name, ShaderStage st
     glslang::TProgram program;
     program.addShader(&shader);
     if (!program.link(messages))
-        return make_error(ErrorCode::ShaderCompile,
-                          fmt::format("shader \"{}\": link: {}", name,
-                                      first_line(program.getInfoLog())));
+        return make_error(ErrorCode::ShaderCompile, fmt::format("shader \"{}\": link: {}", name,
+                                                                first_line(program.getInfoLog())));
     std::vector<uint32_t> spirv;
     glslang::SpvOptions options;
     options.disableOptimizer = false;

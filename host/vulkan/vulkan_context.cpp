@@ -25,17 +25,23 @@ bool layer_available(const char* name) {
     vkEnumerateInstanceLayerProperties(&count, nullptr);
     std::vector<VkLayerProperties> layers(count);
     vkEnumerateInstanceLayerProperties(&count, layers.data());
-    return std::any_of(layers.begin(), layers.end(),
-                       [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+    return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+        return std::strcmp(l.layerName, name) == 0;
+    });
 }
 
 int device_type_rank(VkPhysicalDeviceType type) {
     switch (type) {
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
-        default: return 4;
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+            return 0;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+            return 1;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+            return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU:
+            return 3;
+        default:
+            return 4;
     }
 }
 
@@ -43,11 +49,14 @@ std::atomic<uint64_t> g_validation_messages{0};
 
 }  // namespace
 
-uint64_t VulkanContext::process_validation_message_count() { return g_validation_messages.load(); }
+uint64_t VulkanContext::process_validation_message_count() {
+    return g_validation_messages.load();
+}
 
 ContextOptions ContextOptions::from_environment() {
     ContextOptions options;
-    if (const char* v = std::getenv("ACETATE_VALIDATION")) options.validation = std::string(v) == "1";
+    if (const char* v = std::getenv("ACETATE_VALIDATION"))
+        options.validation = std::string(v) == "1";
     if (const char* d = std::getenv("ACETATE_DEVICE")) options.device_selector = d;
     return options;
 }
@@ -165,9 +174,9 @@ Result<void> VulkanContext::pick_device(const std::string& selector) {
             std::string all;
             for (size_t i = 0; i < names.size(); ++i)
                 all += fmt::format("{}[{}] {}", i ? ", " : "", i, names[i]);
-            return make_error(ErrorCode::NoDevice,
-                              fmt::format("ACETATE_DEVICE=\"{}\" matches no device; have {}",
-                                          selector, all));
+            return make_error(
+                ErrorCode::NoDevice,
+                fmt::format("ACETATE_DEVICE=\"{}\" matches no device; have {}", selector, all));
         }
     } else {
         int best_rank = 99;
@@ -184,11 +193,11 @@ Result<void> VulkanContext::pick_device(const std::string& selector) {
     vkGetPhysicalDeviceProperties(physical_, &properties_);
     if (VK_API_VERSION_MINOR(properties_.apiVersion) < 3 &&
         VK_API_VERSION_MAJOR(properties_.apiVersion) == 1)
-        return make_error(ErrorCode::VulkanInit,
-                          fmt::format("device \"{}\" supports Vulkan {}.{}; Acetate needs 1.3",
-                                      properties_.deviceName,
-                                      VK_API_VERSION_MAJOR(properties_.apiVersion),
-                                      VK_API_VERSION_MINOR(properties_.apiVersion)));
+        return make_error(
+            ErrorCode::VulkanInit,
+            fmt::format("device \"{}\" supports Vulkan {}.{}; Acetate needs 1.3",
+                        properties_.deviceName, VK_API_VERSION_MAJOR(properties_.apiVersion),
+                        VK_API_VERSION_MINOR(properties_.apiVersion)));
     return {};
 }
 
@@ -220,7 +229,8 @@ Result<void> VulkanContext::create_device() {
                                       device_name()));
 
     // Stencil-only formats are optional in Vulkan; take the first the device can attach.
-    for (VkFormat f : {VK_FORMAT_S8_UINT, VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D32_SFLOAT_S8_UINT}) {
+    for (VkFormat f :
+         {VK_FORMAT_S8_UINT, VK_FORMAT_D24_UNORM_S8_UINT, VK_FORMAT_D32_SFLOAT_S8_UINT}) {
         VkFormatProperties props;
         vkGetPhysicalDeviceFormatProperties(physical_, f, &props);
         if (props.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
@@ -237,7 +247,8 @@ Result<void> VulkanContext::create_device() {
     queue_info.queueCount = 1;
     queue_info.pQueuePriorities = &priority;
 
-    VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan13Features enable13{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     enable13.dynamicRendering = VK_TRUE;
     enable13.synchronization2 = VK_TRUE;
     VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
@@ -253,10 +264,9 @@ Result<void> VulkanContext::create_device() {
     info.ppEnabledExtensionNames = extensions;
     VkResult r = vkCreateDevice(physical_, &info, nullptr, &device_);
     if (r != VK_SUCCESS)
-        return make_error(ErrorCode::VulkanInit,
-                          fmt::format("vkCreateDevice on \"{}\" failed (VkResult {})",
-                                      device_name(), int(r)),
-                          r);
+        return make_error(
+            ErrorCode::VulkanInit,
+            fmt::format("vkCreateDevice on \"{}\" failed (VkResult {})", device_name(), int(r)), r);
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
     push_descriptor_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
         vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));

@@ -34,7 +34,7 @@ struct ResourceCounters {
 };
 
 class VulkanContext {
-public:
+  public:
     // Creates instance, device and queue. Fails with NoDevice when nothing matches the selector,
     // VulkanInit when a required feature (Vulkan 1.3 dynamic rendering, synchronization2,
     // push descriptors, fragment stores) is missing.
@@ -69,7 +69,7 @@ public:
     ResourceCounters& counters() { return counters_; }
     const ResourceCounters& counters() const { return counters_; }
 
-private:
+  private:
     VulkanContext() = default;
     Result<void> create_instance(const ContextOptions& options);
     Result<void> pick_device(const std::string& selector);

@@ -24,7 +24,6 @@
 // the halo reaches, not in shading cost.
 
 #include <acetate/effect.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -39,11 +38,15 @@ std::string glsl(std::string_view defines, std::string_view body) {
     return std::string(defines) + "#line 1\n" + std::string(body);
 }
 
-std::string down(int k) { return "down" + std::to_string(k); }
-std::string up(int k) { return "up" + std::to_string(k); }
+std::string down(int k) {
+    return "down" + std::to_string(k);
+}
+std::string up(int k) {
+    return "up" + std::to_string(k);
+}
 
 class Bloom final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "acetate.bloom";

@@ -2,7 +2,6 @@
 // point lights from the scene, and a darkness level. Coverage-preserving.
 
 #include <acetate/effect.hpp>
-
 #include <vector>
 
 #include "lighting_shaders.hpp"
@@ -10,7 +9,7 @@
 namespace {
 
 class Lighting final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "acetate.lighting";

@@ -2,7 +2,7 @@
 #include <acetate/effect.hpp>
 
 class BadDefault final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.bad_default";

@@ -1,10 +1,9 @@
 // build() reports failure: it throws, and the C++ layer maps that to a status and a message.
 #include <acetate/effect.hpp>
-
 #include <stdexcept>
 
 class BuildFails final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.build_fails";

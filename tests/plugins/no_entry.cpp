@@ -1,2 +1,4 @@
 // A shared library that is not an Acetate plugin: it exports no entry point.
-extern "C" __attribute__((visibility("default"))) int some_other_function() { return 42; }
+extern "C" __attribute__((visibility("default"))) int some_other_function() {
+    return 42;
+}

@@ -2,11 +2,10 @@
 // hard-edged disc per spark, coloured from a palette texture prepared on the CPU.
 // Coverage-expanding: sparks may fly past the floor's tiles.
 #include <acetate/effect.hpp>
-
 #include <vector>
 
 class Sparks final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.sparks";
@@ -24,9 +23,11 @@ public:
         if (rects.empty()) throw std::runtime_error("test.sparks needs at least one light");
         graph.floor_data(rects);
         graph.texture("palette", uint32_t(palette.size() / 4), 1, palette);
-        graph.pass({.name = "copy",
-                    .glsl = "void main() { out_color = texelFetch(previous, ivec2(gl_FragCoord.xy), 0); }\n",
-                    .inputs = {"previous"}});
+        graph.pass(
+            {.name = "copy",
+             .glsl =
+                 "void main() { out_color = texelFetch(previous, ivec2(gl_FragCoord.xy), 0); }\n",
+             .inputs = {"previous"}});
         graph.pass({.name = "sparks",
                     .glsl = R"(
 void main() {

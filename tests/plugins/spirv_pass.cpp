@@ -2,7 +2,6 @@
 // own declarations) and handed over through ACETATE_TEST_SPIRV_FILE, standing in for SPIR-V a
 // plugin would ship compiled.
 #include <acetate/effect.hpp>
-
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -11,7 +10,7 @@
 #include <vector>
 
 class SpirvPass final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.spirv_pass";

@@ -47,19 +47,21 @@ typedef int32_t AcetateStatus;
 #define ACETATE_ERROR_FAILED 1           /* the call failed; see last_error() */
 #define ACETATE_ERROR_INVALID_ARGUMENT 2 /* an argument is NULL, out of range or malformed */
 #define ACETATE_ERROR_OUT_OF_MEMORY 3
-#define ACETATE_ERROR_UNSUPPORTED_ABI 4  /* the host's ABI version is one the plugin cannot serve */
-#define ACETATE_ERROR_EXCEPTION 5        /* a C++ exception was caught at the boundary */
+/* the host's ABI version is one the plugin cannot serve */
+#define ACETATE_ERROR_UNSUPPORTED_ABI 4
+#define ACETATE_ERROR_EXCEPTION 5 /* a C++ exception was caught at the boundary */
 
 /* ---- Descriptor values. Fixed by ABI. ---- */
-#define ACETATE_SCOPE_FLOOR 0u   /* runs on each floor that lists it, on that floor alone */
-#define ACETATE_SCOPE_GLOBAL 1u  /* runs once on the composite of all floors */
+#define ACETATE_SCOPE_FLOOR 0u  /* runs on each floor that lists it, on that floor alone */
+#define ACETATE_SCOPE_GLOBAL 1u /* runs once on the composite of all floors */
 
 #define ACETATE_COVERAGE_PRESERVING 0u /* out.a == in.a at every pixel */
-#define ACETATE_COVERAGE_EXPANDING 1u  /* may raise alpha (glow past a tile edge), never lower it */
+/* may raise alpha (glow past a tile edge), never lower it */
+#define ACETATE_COVERAGE_EXPANDING 1u
 
 #define ACETATE_PARAM_FLOAT 0u
-#define ACETATE_PARAM_INT 1u   /* a whole number held in a float */
-#define ACETATE_PARAM_BOOL 2u  /* 0 or 1 held in a float */
+#define ACETATE_PARAM_INT 1u  /* a whole number held in a float */
+#define ACETATE_PARAM_BOOL 2u /* 0 or 1 held in a float */
 
 #define ACETATE_PASS_FULLSCREEN 0u      /* one fragment per pixel of the pass's output */
 #define ACETATE_PASS_INSTANCED_QUADS 1u /* instance_count quads (particles, sprites), see below */
@@ -96,22 +98,22 @@ typedef struct AcetatePresetDesc {
  * loaded. Checked by the host at load (docs/plugin-guide.md lists every check).
  */
 typedef struct AcetateEffectDescriptor {
-    uint32_t struct_size;       /* sizeof(AcetateEffectDescriptor) as the plugin was built */
-    uint32_t abi_version;       /* ACETATE_ABI_VERSION the plugin was built against */
-    const char* id;             /* reverse-DNS, e.g. "acetate.lighting" */
-    const char* display_name;   /* e.g. "Lighting" */
-    uint32_t version_major;     /* the plugin's own version */
+    uint32_t struct_size;     /* sizeof(AcetateEffectDescriptor) as the plugin was built */
+    uint32_t abi_version;     /* ACETATE_ABI_VERSION the plugin was built against */
+    const char* id;           /* reverse-DNS, e.g. "acetate.lighting" */
+    const char* display_name; /* e.g. "Lighting" */
+    uint32_t version_major;   /* the plugin's own version */
     uint32_t version_minor;
     uint32_t version_patch;
-    uint32_t scope;             /* ACETATE_SCOPE_* */
-    uint32_t coverage;          /* ACETATE_COVERAGE_* */
-    const char* const* masks;   /* mask kinds it reads, e.g. {"water"}; may be NULL if none */
+    uint32_t scope;           /* ACETATE_SCOPE_* */
+    uint32_t coverage;        /* ACETATE_COVERAGE_* */
+    const char* const* masks; /* mask kinds it reads, e.g. {"water"}; may be NULL if none */
     uint32_t mask_count;
     const AcetateParamDesc* params;
     uint32_t param_count;
     const AcetatePresetDesc* presets;
     uint32_t preset_count;
-    const char* source_digest;  /* digest of the plugin's sources, embedded at build; may be "" */
+    const char* source_digest; /* digest of the plugin's sources, embedded at build; may be "" */
 } AcetateEffectDescriptor;
 
 /* A point light of the scene, in scene pixels (origin top-left, y down), linear colour. */
@@ -129,8 +131,8 @@ typedef struct AcetateLight {
  */
 typedef struct AcetateFloorInfo {
     uint32_t struct_size;
-    uint32_t floor_index;       /* UINT32_MAX for a global instance */
-    const char* floor_name;     /* "" for a global instance */
+    uint32_t floor_index;   /* UINT32_MAX for a global instance */
+    const char* floor_name; /* "" for a global instance */
     uint32_t canvas_width;
     uint32_t canvas_height;
     const AcetateLight* lights; /* the floor's lights; NULL when light_count is 0 */
@@ -143,8 +145,8 @@ typedef struct AcetateFloorInfo {
 
 /* An intermediate target: RGBA in the host's target format, ceil(canvas / divisor) in size. */
 typedef struct AcetateTargetDesc {
-    const char* name;  /* [a-z][a-z0-9_]*, unique within the instance; not "previous"/"result" */
-    uint32_t divisor;  /* 1, 2, 4, 8, ... */
+    const char* name; /* [a-z][a-z0-9_]*, unique within the instance; not "previous"/"result" */
+    uint32_t divisor; /* 1, 2, 4, 8, ... */
 } AcetateTargetDesc;
 
 /*
@@ -167,16 +169,16 @@ typedef struct AcetateTargetDesc {
  */
 typedef struct AcetatePassDesc {
     uint32_t struct_size;
-    const char* name;             /* unique within the instance, e.g. "down1" */
-    uint32_t kind;                /* ACETATE_PASS_* */
-    const char* glsl;             /* fragment source after the host's declarations, or NULL */
-    const uint32_t* spirv;        /* or a whole SPIR-V fragment module with the same interface */
+    const char* name;      /* unique within the instance, e.g. "down1" */
+    uint32_t kind;         /* ACETATE_PASS_* */
+    const char* glsl;      /* fragment source after the host's declarations, or NULL */
+    const uint32_t* spirv; /* or a whole SPIR-V fragment module with the same interface */
     uint32_t spirv_word_count;
-    const char* const* inputs;    /* "previous", "mask.<kind>", "texture.<name>" or a target */
-    uint32_t input_count;         /* at most 8 */
-    const char* output;           /* "result" (the effect's output) or a target name */
-    uint32_t blend;               /* ACETATE_BLEND_*; ADD and OVER need an earlier REPLACE */
-    uint32_t instance_count;      /* instanced quads: how many (1 .. 1048576); else 0 */
+    const char* const* inputs;     /* "previous", "mask.<kind>", "texture.<name>" or a target */
+    uint32_t input_count;          /* at most 8 */
+    const char* output;            /* "result" (the effect's output) or a target name */
+    uint32_t blend;                /* ACETATE_BLEND_*; ADD and OVER need an earlier REPLACE */
+    uint32_t instance_count;       /* instanced quads: how many (1 .. 1048576); else 0 */
     uint32_t instance_data_offset; /* instanced quads: first float of the rects in floor_data */
 } AcetatePassDesc;
 
@@ -186,10 +188,10 @@ typedef struct AcetatePassDesc {
  * read it as the input "texture.<name>".
  */
 typedef struct AcetateTextureDesc {
-    const char* name;    /* [a-z][a-z0-9_]*, unique within the instance */
-    uint32_t width;      /* 1 .. 16384 */
-    uint32_t height;     /* 1 .. 16384 */
-    const float* rgba;   /* width * height * 4 floats, all finite; copied */
+    const char* name;  /* [a-z][a-z0-9_]*, unique within the instance */
+    uint32_t width;    /* 1 .. 16384 */
+    uint32_t height;   /* 1 .. 16384 */
+    const float* rgba; /* width * height * 4 floats, all finite; copied */
 } AcetateTextureDesc;
 
 /* Host-owned handle through which build() declares an instance's work. Opaque. */
@@ -219,8 +221,8 @@ typedef struct AcetateHostApi {
  * The plugin's function table. Owned by the plugin; valid while the library is loaded.
  */
 typedef struct AcetateEffectApi {
-    uint32_t struct_size;                          /* sizeof(AcetateEffectApi) */
-    const AcetateEffectDescriptor* descriptor;     /* never NULL */
+    uint32_t struct_size;                      /* sizeof(AcetateEffectApi) */
+    const AcetateEffectDescriptor* descriptor; /* never NULL */
     /*
      * Declares one instance's targets, passes and floor data. Called at scene load, once per
      * floor using the effect (or once, for a global effect), never during a frame. Must be

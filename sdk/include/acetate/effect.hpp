@@ -28,7 +28,7 @@ namespace acetate::sdk {
 
 // Thrown by Graph when the host refuses a declaration; caught at the boundary.
 class HostRefused : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -46,7 +46,7 @@ struct Preset {
 
 // What an effect is; turned into the C descriptor once, kept for the library's lifetime.
 struct EffectInfo {
-    std::string id;            // reverse-DNS, e.g. "com.example.tint"
+    std::string id;  // reverse-DNS, e.g. "com.example.tint"
     std::string display_name;
     uint32_t version_major = 1, version_minor = 0, version_patch = 0;
     uint32_t scope = ACETATE_SCOPE_FLOOR;
@@ -58,18 +58,18 @@ struct EffectInfo {
 
 struct Pass {
     std::string name;
-    std::string glsl;                  // after the host's declarations; defines main()
-    std::vector<std::string> inputs;   // "previous", "mask.<kind>", "texture.<name>", a target
+    std::string glsl;                 // after the host's declarations; defines main()
+    std::vector<std::string> inputs;  // "previous", "mask.<kind>", "texture.<name>", a target
     std::string output = "result";
     uint32_t blend = ACETATE_BLEND_REPLACE;
-    uint32_t instance_count = 0;       // > 0: an instanced-quad pass (see acetate/effect.h)
+    uint32_t instance_count = 0;  // > 0: an instanced-quad pass (see acetate/effect.h)
     uint32_t instance_data_offset = 0;
-    std::vector<uint32_t> spirv;       // instead of glsl: a whole fragment module
+    std::vector<uint32_t> spirv;  // instead of glsl: a whole fragment module
 };
 
 // The floor an instance is built for, with parameters looked up by name.
 class Floor {
-public:
+  public:
     Floor(const AcetateFloorInfo& info, const EffectInfo& effect) : info_(info), effect_(effect) {}
     bool is_global() const { return info_.floor_index == UINT32_MAX; }
     uint32_t index() const { return info_.floor_index; }
@@ -91,14 +91,14 @@ public:
         return false;
     }
 
-private:
+  private:
     const AcetateFloorInfo& info_;
     const EffectInfo& effect_;
 };
 
 // Declares an instance's work to the host.
 class Graph {
-public:
+  public:
     Graph(const AcetateHostApi& host, AcetateGraph* graph) : host_(host), graph_(graph) {}
     void target(const std::string& name, uint32_t divisor) {
         const AcetateTargetDesc desc{name.c_str(), divisor};
@@ -140,7 +140,7 @@ public:
         check(host_.add_texture(graph_, &desc), "add_texture", name);
     }
 
-private:
+  private:
     void check(AcetateStatus status, const char* call, const std::string& what) {
         if (status != ACETATE_OK)
             throw HostRefused(std::string(call) + "(" + what + ") was refused by the host");
@@ -150,7 +150,7 @@ private:
 };
 
 class Effect {
-public:
+  public:
     virtual ~Effect() = default;
     virtual EffectInfo info() const = 0;
     // Declares targets, passes and floor data of one instance. Throw to fail the load.
@@ -166,7 +166,7 @@ inline std::string& last_error_text() {
 
 // Owns the C descriptor and every array and string it points to.
 class Registration {
-public:
+  public:
     explicit Registration(std::unique_ptr<Effect> effect)
         : effect_(std::move(effect)), info_(effect_->info()) {
         for (const std::string& m : info_.masks) masks_.push_back(m.c_str());
@@ -203,7 +203,7 @@ public:
     const EffectInfo& info() const { return info_; }
     AcetateEffectApi& api() { return api_; }
 
-private:
+  private:
     std::unique_ptr<Effect> effect_;
     EffectInfo info_;
     std::vector<const char*> masks_;
@@ -271,8 +271,8 @@ AcetateStatus entry(uint32_t host_abi_version, const AcetateEffectApi** out_api)
 }  // namespace acetate::sdk
 
 // Defines the plugin's entry point for EffectClass (one per shared library).
-#define ACETATE_REGISTER_EFFECT(EffectClass)                                              \
-    extern "C" ACETATE_EXPORT AcetateStatus acetate_effect_entry_v1(                       \
-        uint32_t host_abi_version, const AcetateEffectApi** out_api) {                     \
-        return ::acetate::sdk::detail::entry<EffectClass>(host_abi_version, out_api);      \
+#define ACETATE_REGISTER_EFFECT(EffectClass)                                          \
+    extern "C" ACETATE_EXPORT AcetateStatus acetate_effect_entry_v1(                  \
+        uint32_t host_abi_version, const AcetateEffectApi** out_api) {                \
+        return ::acetate::sdk::detail::entry<EffectClass>(host_abi_version, out_api); \
     }

@@ -5,7 +5,7 @@
 #include <acetate/effect.hpp>
 
 class AlphaHalfStep final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.harness.alpha_half_step";

@@ -3,11 +3,10 @@
 // (colour * gain, alpha kept). Caught by: the harness's child process dying -> CRASH (only on
 // scenes with two or more floors).
 #include <acetate/effect.hpp>
-
 #include <csignal>
 
 class CrashSecondFloor final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.harness.crash_second_floor";

@@ -5,7 +5,7 @@
 #include <acetate/effect.hpp>
 
 class DisconnectedParam final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.harness.disconnected_param";

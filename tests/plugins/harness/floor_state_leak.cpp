@@ -19,7 +19,7 @@
 #include <acetate/effect.hpp>
 
 class FloorStateLeak final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.harness.floor_state_leak";

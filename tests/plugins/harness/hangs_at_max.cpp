@@ -3,11 +3,10 @@
 // at any other value it builds a clean pass (colour * (1 + 0.05 * iterations), alpha kept).
 // Caught by: the harness's time limit -> TIMEOUT (only the case with iterations = 8).
 #include <acetate/effect.hpp>
-
 #include <cstdint>
 
 class HangsAtMax final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.harness.hangs_at_max";

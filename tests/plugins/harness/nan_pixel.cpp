@@ -4,7 +4,7 @@
 #include <acetate/effect.hpp>
 
 class NanPixel final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.harness.nan_pixel";

@@ -3,11 +3,10 @@
 // process) renders different colours. Alpha is kept and the factor is positive, so the output
 // is otherwise valid. Caught by: the DETERMINISM check only (renders differ between loads).
 #include <acetate/effect.hpp>
-
 #include <random>
 
 class Nondeterministic final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.harness.nondeterministic";

@@ -8,7 +8,7 @@
 #include "glow_shader.hpp"
 
 class UndeclaredExpansion final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.harness.undeclared_expansion";
@@ -19,9 +19,7 @@ public:
         return e;
     }
     void build(acetate::sdk::Graph& graph, const acetate::sdk::Floor&) const override {
-        graph.pass({.name = "glow",
-                    .glsl = kGlowShader,
-                    .inputs = {"previous"}});
+        graph.pass({.name = "glow", .glsl = kGlowShader, .inputs = {"previous"}});
     }
 };
 ACETATE_REGISTER_EFFECT(UndeclaredExpansion)

@@ -6,7 +6,7 @@
 #include <acetate/effect.hpp>
 
 class WellBehaved final : public acetate::sdk::Effect {
-public:
+  public:
     acetate::sdk::EffectInfo info() const override {
         acetate::sdk::EffectInfo e;
         e.id = "test.harness.well_behaved";
