@@ -434,7 +434,7 @@ Result<void> run_floor_isolation(const CaseContext& c, Session& s, CaseWriter& w
 // kind the plugin reads, at three times, with the other parameters at their defaults, then all
 // at their minimums, then all at their maximums (a parameter may matter only when another
 // allows it, like a night level by day): identical outputs throughout mean the parameter is
-// not connected to anything (seed 004's settings audit).
+// not connected to anything (docs/design.md, L-connected).
 Result<void> run_disconnected(const CaseContext& c, Session& s, CaseWriter& w) {
     constexpr float kTimes[] = {0.0f, 0.37f, 1.9f};
     enum class Others { Default, Min, Max };

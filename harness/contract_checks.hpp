@@ -1,5 +1,5 @@
 #pragma once
-// The image contract, checked on the CPU from what the GPU left (DESIGN.md, "The contract"):
+// The image contract, checked on the CPU from what the GPU left (docs/contract.md):
 // each function compares an effect's input and output images of one floor (or of the
 // composite, for a global effect) and returns a CheckResult with every offending pixel counted,
 // the first few as examples, and a heat map of where they are.

@@ -1,7 +1,7 @@
 #pragma once
 // The validation registry: which plugin (id + version) has reached which validation stage, on
-// whose sign-off and on what automated evidence (DESIGN.md, "Validation stages";
-// docs/registry.md for the workflow and the file format).
+// whose sign-off and on what automated evidence (docs/design.md, "Validation stages", says
+// why; docs/registry.md has the workflow and the file format).
 //
 //   UNVALIDATED -> REVIEWED -> ALPHA_TESTED -> INTEGRATED -> VALIDATED, never skipped.
 //

@@ -1,4 +1,4 @@
-// Seed 000's Step 1 and Step 2 gates, automated: the ground floor alone, two floors with the
+// The compositor's first two gates, automated: the ground floor alone, two floors with the
 // ground showing through the upper floor's gaps, no white fringe at anti-aliased edges, the
 // canvas background where no floor covers, and zero premultiplied violations.
 
@@ -143,8 +143,8 @@ TEST_F(CompositeGate, TileTexelsWithColourAtZeroAlphaAreReportedAndDropped) {
 }
 
 TEST_F(CompositeGate, ColourWithoutCoverageIsCountedAndShownInRed) {
-    // Seed 000's A2/E1: something adds colour at alpha 0 inside the floor (as the old lighting
-    // effect did). The composite counts it, and the violations view paints it red.
+    // Colour at alpha 0 inside the floor (docs/design.md, L-alpha-zero: as a lighting effect
+    // once did). The composite counts it, and the violations view paints it red.
     SceneDesc scene = make_scene(16, 16, {0, 0, 0, 1});
     const uint32_t ground = add_floor(scene, "ground");
     ImageRGBA tile = solid(8, 8, {0.5f, 0.5f, 0.5f, 1});

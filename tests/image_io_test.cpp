@@ -1,4 +1,4 @@
-// Image I/O: the colour conventions of DESIGN.md ("Conventions") on load and save, safe
+// Image I/O: the colour conventions (docs/conventions.md, "Colour") on load and save, safe
 // un-premultiplication for PNG, half precision for EXR, and atomic writes.
 
 #include "scene/image_io.hpp"

@@ -110,7 +110,8 @@ TEST_F(PipelineCacheFileTest, RoundTripReturnsTheDriverData) {
     EXPECT_TRUE(strays().empty());
 }
 
-// lavapipe's whole cache is the 32-byte header (DESIGN.md): that must round-trip too.
+// lavapipe's whole cache is the 32-byte header (docs/design.md, "Facts about lavapipe"): that
+// must round-trip too.
 TEST_F(PipelineCacheFileTest, HeaderOnlyDriverDataRoundTrips) {
     const Bytes data = driver_data(test_identity(), 0);
     save(test_identity(), data);

@@ -1,5 +1,5 @@
-// Scene parsing: the issue's example parses with resolved paths and defaults; every kind of bad
-// input gives one line naming the file, the JSON path and what is wrong.
+// Scene parsing: the format's example scene parses with resolved paths and defaults; every kind of
+// bad input gives one line naming the file, the JSON path and what is wrong.
 
 #include <gtest/gtest.h>
 
@@ -15,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-// The example from the issue, verbatim.
+// The example scene of the format's specification, verbatim.
 constexpr const char* kExample = R"({ "format": "acetate-scene/1",
   "canvas": { "width": 1280, "height": 720, "background": [0.05, 0.05, 0.06, 1.0] },
   "floors": [

@@ -1,4 +1,4 @@
-// Warm floor switch (seed 000, E4/E5/E7): after load, switching the active floor loads,
+// Warm floor switch (docs/design.md, L-warm-switch): after load, switching the active floor loads,
 // allocates and compiles nothing, and coming back gives the same image bit for bit.
 
 #include <cstring>

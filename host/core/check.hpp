@@ -1,7 +1,7 @@
 #pragma once
-// ACETATE_CHECK: an always-on check for contract violations (STYLE.md tier 2). Unlike assert it
-// stays in release builds; it names what was violated and aborts, because continuing would
-// render something wrong without saying so.
+// ACETATE_CHECK: an always-on check for contract violations (tier 2 of docs/design.md, "Errors:
+// three tiers"). Unlike assert it stays in release builds; it names what was violated and
+// aborts, because continuing would render something wrong without saying so.
 
 #include <cstdio>
 #include <cstdlib>

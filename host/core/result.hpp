@@ -1,7 +1,7 @@
 #pragma once
 // Result<T>: how fallible host operations report failure caused by the environment or the
-// input (STYLE.md tier 3). Internal invariants use assert; contract violations use
-// ACETATE_CHECK (core/check.hpp).
+// input (tier 3 of docs/design.md, "Errors: three tiers"). Internal invariants use assert;
+// contract violations use ACETATE_CHECK (core/check.hpp).
 
 #include <vulkan/vulkan.h>
 

@@ -242,8 +242,9 @@ Result<void> Compositor::create_targets(const SceneDesc& scene) {
     return {};
 }
 
-// lavapipe compiles a pipeline's shaders at its first draw (30-100 ms each, DESIGN.md facts), so
-// every pipeline draws one pixel here and the first real frame does not stall.
+// lavapipe compiles a pipeline's shaders at its first draw (30-100 ms each: docs/design.md,
+// "Facts about lavapipe"), so every pipeline in use draws one pixel here and the first real
+// frame does not stall (L-warm-switch).
 Result<void> Compositor::warm_pipelines() {
     std::memset(violations_.mapped(), 0, violations_.size());
     // lavapipe keys its shader variants on texture state too (a power-of-two texture and

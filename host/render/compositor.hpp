@@ -24,13 +24,13 @@ namespace acetate {
 class VulkanContext;
 class Renderer;
 
-// What the output image shows (seed 000's AlphaValidator views).
+// What the output image shows: the picture, or a debug view (docs/design.md, L-debug-views).
 enum class OutputView {
     Normal = 0,      // the composite over the canvas background
     FloorAlpha = 1,  // the active floor's own alpha, grey
     AccumAlpha = 2,  // the accumulation's alpha, grey
     FloorRgb = 3,    // the active floor's rgb with alpha forced to 1
-    Violations = 4,  // red where the active floor has a == 0 but rgb != 0 (or NaN/Inf)
+    Violations = 4,  // red where the active floor has a <= 0 but rgb != 0 (or NaN/Inf)
     Isolation = 5,   // each floor tinted its own colour
 };
 Result<OutputView> parse_view(const std::string& name);

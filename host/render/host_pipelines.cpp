@@ -165,7 +165,7 @@ Result<VkPipeline> HostPipelines::create_stage(Stage stage, VkFormat color_forma
     desc.stencil_test = s.stencil_attachment;
     desc.stencil_compare = s.stencil_compare;
     desc.stencil_write = s.stencil_write;
-    // Premultiplied "over" for every stage that composites (seed 000, A1/A5).
+    // Premultiplied "over" for every stage that composites (docs/design.md, L-one-alpha).
     desc.blend = s.over_blend ? BlendMode::Over : BlendMode::Replace;
     desc.layout = layout_;
     auto pipeline = create_graphics_pipeline(context_.device(), cache, desc, stage_name(stage));

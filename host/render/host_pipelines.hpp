@@ -1,6 +1,7 @@
 #pragma once
-// The host's fixed-function stages, each its own pipeline with its own blend and stencil state
-// (seed 000, A3: no state shared between stages, no property swaps at run time).
+// The host's fixed-function stages, each its own pipeline with its own blend and stencil state:
+// no state shared between stages, no property swaps at run time (docs/design.md,
+// L-separate-stages).
 
 #include <vulkan/vulkan.h>
 
@@ -31,7 +32,7 @@ enum class Stage {
     TileToTarget,      // tile -> floor target; over blend; writes stencil = 1 where it covers
     TileToAccum,       // tile -> accumulation directly (floors without effects); over blend
     Composite,         // floor target -> accumulation; over blend; stencil EQUAL 1
-    CompositeByAlpha,  // same, gated by discarding a == 0 (coverage-expanding effects, A1)
+    CompositeByAlpha,  // same, no stencil gate: drops exact (0,0,0,0) (coverage-expanding)
     InjectCovered,     // test hook: colour -> floor target where stencil == 1
     InjectUncovered,   // test hook: colour -> floor target where stencil != 1
     Output,            // accumulation -> output image over the background, or a debug view

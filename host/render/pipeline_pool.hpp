@@ -1,8 +1,9 @@
 #pragma once
-// Process-wide store of compiled shaders and pipelines, owned by the Vulkan context so that it
-// outlives every scene (seed 003: shader programs survive scene transitions). Shaders are keyed
-// by the SHA-256 of their source, pipelines by the SHA-256 of their SPIR-V plus their state, so
-// loading a scene a second time compiles nothing and creates no pipeline.
+// Process-wide store of compiled shaders and pipelines, owned by the Renderer so that it outlives
+// every scene (docs/design.md, L-pool). Shaders are keyed by the SHA-256 of their source,
+// pipelines by the key their maker gives (a host stage's name and colour format; an effect
+// pass's SPIR-V hash plus its state), so loading a scene a second time compiles nothing and
+// creates no pipeline.
 
 #include <vulkan/vulkan.h>
 

@@ -1,6 +1,6 @@
 #pragma once
-// Image files in and out, through OpenImageIO. Everything inside the host is linear light,
-// premultiplied RGBA float (DESIGN.md "Conventions").
+// Image files in and out, through OpenImageIO. Colour inside the host is linear light,
+// premultiplied RGBA float; masks are data (docs/design.md, "Conventions").
 
 #include <cstdint>
 #include <filesystem>

@@ -1,7 +1,8 @@
 #pragma once
-// Per-floor masks (seed 000, M1/M3/M7): each floor's tiles may carry masks of several kinds;
-// at load, all masks of one kind on one floor are composited into one scene-space image, so an
-// effect samples one texture in the same space as everything else. A floor's masks are its own.
+// Per-floor masks (docs/design.md, L-masks-per-floor and L-one-space): each floor's tiles may
+// carry masks of several kinds; at load, all masks of one kind on one floor are composited into
+// one scene-space image, so an effect samples one texture in the same space as everything else.
+// A floor's masks are its own.
 
 #include <filesystem>
 #include <map>

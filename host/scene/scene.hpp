@@ -32,7 +32,7 @@ struct LightDesc {
     float intensity = 1;                  // >= 0
 };
 
-// A reference to an effect plugin; kept for the plugin runtime (issue 3).
+// A reference to an effect plugin as the scene names it; checked against the plugin at load.
 struct EffectRef {
     std::string plugin;  // reverse-DNS id, e.g. "acetate.lighting"
     nlohmann::json params = nlohmann::json::object();

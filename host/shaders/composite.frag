@@ -1,6 +1,7 @@
 #version 450
-// Floor target -> accumulation. A pure pass-through (seed 000, A4): the pipeline's stencil test
-// (EQUAL 1) gates it to the floor's coverage and its blend (One, OneMinusSrcAlpha) does "over".
+// Floor target -> accumulation. A pure pass-through (docs/design.md, L-pass-through): the
+// Composite pipeline's stencil test (EQUAL 1) gates it to the floor's coverage (CompositeByAlpha
+// has no gate; see below) and the blend (One, OneMinusSrcAlpha) does "over".
 layout(push_constant) uniform Push {
     vec4 rect;
     vec4 tint;

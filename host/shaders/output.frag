@@ -1,5 +1,5 @@
 #version 450
-// Accumulation -> output image, with the debug views of seed 000's AlphaValidator.
+// Accumulation -> output image, or one of the debug views (docs/design.md, L-debug-views).
 layout(push_constant) uniform Push {
     vec4 unused;
     vec4 background;    // straight-alpha linear background colour
@@ -30,7 +30,7 @@ void main() {
         float luma = dot(flr.rgb, vec3(0.2126, 0.7152, 0.0722));
         color = bad ? vec4(1.0, 0.0, 0.0, 1.0) : vec4(vec3(0.25 * clamp(luma, 0.0, 1.0)), 1.0);
     } else {
-        // Premultiplied over the canvas background (seed 000, A5).
+        // Premultiplied over the canvas background (docs/design.md, L-one-alpha).
         vec4 bg = vec4(pc.background.rgb * pc.background.a, pc.background.a);
         color = acc + bg * (1.0 - acc.a);
     }

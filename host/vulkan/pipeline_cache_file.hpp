@@ -1,7 +1,8 @@
 #pragma once
 // The on-disk VkPipelineCache: pipelines compiled in one run seed the driver in the next, so a
-// real GPU does not recompile every shader at start-up (seed 003). On lavapipe the driver's data
-// is a 32-byte header only (DESIGN.md, "Facts about lavapipe"); the logic still runs there.
+// real GPU does not recompile every shader at start-up (docs/design.md, L-pool). On lavapipe the
+// driver's data is a 32-byte header only (docs/design.md, "Facts about lavapipe"); the logic
+// still runs there.
 //
 // A driver must never see bytes it did not write for this exact device and driver: malformed
 // cache data is undefined behaviour in some drivers. So the driver's data is wrapped in our own

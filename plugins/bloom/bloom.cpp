@@ -70,7 +70,8 @@ class Bloom final : public acetate::sdk::Effect {
     }
 
     void build(acetate::sdk::Graph& graph, const acetate::sdk::Floor& floor) const override {
-        // The host clamps to [1, 8] but does not round an INT parameter a scene gave as 4.5.
+        // The host hands an INT parameter over already rounded and clamped to its declared
+        // range, [1, 8]; rounding and clamping again here is only a guard.
         const int levels = std::clamp(int(std::lround(floor.param("levels"))), 1, 8);
         for (int k = 1; k <= levels; ++k) graph.target(down(k), 1u << k);
         for (int k = 1; k < levels; ++k) graph.target(up(k), 1u << k);

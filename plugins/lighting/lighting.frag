@@ -1,7 +1,7 @@
 // acetate.lighting: ambient light (day/night), the floor's point lights, a darkness level.
 // Light multiplies the premultiplied colour, so every term is scaled by alpha: a transparent
-// pixel stays (0, 0, 0, 0) (seed 000, A2/E1: the lighting bug that started it all), and alpha
-// is passed through untouched.
+// pixel stays (0, 0, 0, 0) (docs/design.md, L-alpha-zero: the lighting bug that started it
+// all), and alpha is passed through untouched.
 //
 // floor_data: [light count, then per light: x, y, radius, intensity, r, g, b, unused].
 

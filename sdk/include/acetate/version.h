@@ -1,4 +1,5 @@
-/* Acetate SDK version. The plugin ABI (acetate/effect.h) arrives with the plugin runtime. */
+/* Acetate SDK version: the release of these headers, for information. Compatibility is decided
+ * by the plugin ABI's own version, ACETATE_ABI_VERSION in acetate/effect.h. */
 #ifndef ACETATE_VERSION_H
 #define ACETATE_VERSION_H
 
