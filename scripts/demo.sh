@@ -8,7 +8,9 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${ACETATE_BUILD_DIR:-$root/build}
 out=${1:-$root/out/demo}
 scene=$root/examples/harbour/scene.json
-bash "$root/scripts/setup.sh"
+start=$SECONDS
+# Only what the demo runs: the CLI, the harness and the shipped plugins (not the test suites).
+bash "$root/scripts/setup.sh" acetate-demo
 
 mkdir -p "$out"
 # The committed sign-offs (validation/signoffs.json) are imported by validate; the automated
@@ -21,30 +23,33 @@ for plugin in lighting bloom; do
 done
 "$build/harness/acetate-harness" status
 
-floors=$(python3 -c "import json,sys; print(','.join(str(i) for i in range(len(json.load(open(sys.argv[1]))['floors']))))" "$scene")
-echo "== Rendering $scene, floors $floors, into $out"
+echo "== Rendering $scene, every floor, into $out"
+rm -f "$out"/normal.floor*.png
 for view in normal floor-alpha accum-alpha floor-rgb violations isolation; do
   echo "-- view: $view"
-  "$build/host/acetate" render "$scene" -o "$out/$view.png" --floors "$floors" --view "$view" \
+  "$build/host/acetate" render "$scene" -o "$out/$view.png" --floors all --view "$view" \
     --stats "$out/$view.stats.json"
 done
-"$build/host/acetate" render "$scene" -o "$out/normal.exr" --floors "$floors"
+"$build/host/acetate" render "$scene" -o "$out/normal.exr" --floors all
+floors=$(cd "$out" && ls normal.floor*.png | sed -E 's/normal\.floor([0-9]+)\.png/\1/' | sort -n | tr '\n' ' ')
 
 # One picture to look at: every view (rows) for every floor (columns).
 if command -v oiiotool >/dev/null; then
-  n=$(echo "$floors" | tr ',' ' ' | wc -w)
+  n=$(echo "$floors" | wc -w)
   images=()
   for view in normal floor-alpha accum-alpha floor-rgb violations isolation; do
-    for f in ${floors//,/ }; do images+=("$out/$view.floor$f.png"); done
+    for f in $floors; do images+=("$out/$view.floor$f.png"); done
   done
   oiiotool "${images[@]}" --mosaic:pad=4 "${n}x6" --resize 50% -o "$out/contact-sheet.png"
 fi
 
 echo
-echo "Done. Images are in $out:"
+echo "Done in $((SECONDS - start)) s. Images are in $out:"
 echo "  normal.floorN.png      the scene seen from floor N (also normal.floorN.exr: half, linear)"
 echo "  <view>.floorN.png      debug views: floor-alpha accum-alpha floor-rgb violations isolation"
 echo "  <view>.stats.json      load and per-frame statistics"
 echo "  validation/<plugin>/index.html   the harness's reports (report.json beside each)"
 echo "Registry: $build/validation/VALIDATION-REGISTRY.md"
-[ -f "$out/contact-sheet.png" ] && echo "  contact-sheet.png      all views (rows) x floors (columns)"
+if [ -f "$out/contact-sheet.png" ]; then
+  echo "  contact-sheet.png      all views (rows) x floors (columns)"
+fi

@@ -1,18 +1,21 @@
 #!/usr/bin/env bash
-# Installs the Debian packages Acetate needs (if missing), then configures and builds it.
+# Installs the Debian packages Acetate needs (if missing), then configures and builds it:
+# everything, or only the CMake targets named as arguments (demo.sh builds `acetate-demo`).
 # Used by demo.sh and test.sh; safe to run again (only missing packages are installed and the
 # build is incremental).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${ACETATE_BUILD_DIR:-$root/build}
 
+# Build: compilers, CMake, the libraries. Tests: GoogleTest, Benchmark, clang-format (the
+# format check), git and debootstrap (scripts/fresh-machine.sh's own tests).
 packages=(
-  cmake g++ make pkg-config
-  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-dev
+  cmake g++ make pkg-config git
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-dev glslang-tools
   libopenimageio-dev openimageio-tools libimath-dev
   libboost-dev libboost-filesystem-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libglm-dev libssl-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev clang-format debootstrap
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -29,4 +32,6 @@ fi
 
 echo "== Configuring and building in $build"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo ${ACETATE_CMAKE_ARGS:-} >/dev/null
-cmake --build "$build" -j"$(nproc)"
+targets=()
+for t in "$@"; do targets+=(--target "$t"); done
+cmake --build "$build" -j"$(nproc)" "${targets[@]}"

@@ -305,6 +305,13 @@ TEST(CliBadInput, FloorsListThatIsNotAList) {
     expect_refused(run, {"--floors", "0,x"});
 }
 
+TEST(CliBadInput, EmptyFloorsList) {
+    const fs::path dir = write_scene();
+    const CliRun run = run_acetate(dir, "render scene.json -o out.png --floors ''");
+    expect_refused(run, {"--floors"});
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
 TEST(CliBadInput, UnsupportedOutputExtension) {
     const fs::path dir = write_scene();
     const CliRun run = run_acetate(dir, "render scene.json -o out.bmp");
@@ -349,6 +356,18 @@ TEST(CliFloors, ExrOutputsAreNamedTheSameWay) {
     EXPECT_TRUE(fs::exists(dir / "render.floor0.exr")) << run.describe();
     EXPECT_TRUE(fs::exists(dir / "render.floor1.exr")) << run.describe();
     EXPECT_FALSE(fs::exists(dir / "render.exr"));
+}
+
+TEST(CliFloors, AllRendersEveryFloorBottomToTop) {
+    const fs::path dir = write_scene();
+    const CliRun run = run_acetate(dir, "render scene.json -o out.png --floors all");
+    expect_success(run);
+    // The scene has two floors: both, in order, and nothing else.
+    EXPECT_TRUE(fs::exists(dir / "out.floor0.png")) << run.describe();
+    EXPECT_TRUE(fs::exists(dir / "out.floor1.png")) << run.describe();
+    EXPECT_FALSE(fs::exists(dir / "out.floor2.png"));
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+    EXPECT_LT(run.out.find("floor 0:"), run.out.find("floor 1:")) << run.describe();
 }
 
 TEST(CliFloors, SingleFloorWritesTheOutputItself) {

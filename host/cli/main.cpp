@@ -22,8 +22,9 @@ int main(int argc, char** argv) {
         ->required();
     auto* floor = cmd->add_option("--floor", render.floor, "Active floor (default: the scene's)");
     cmd->add_option("--floors", floors_list,
-                    "Active floors to render in turn in one process, e.g. 0,1,2,1; writes "
-                    "OUT with the floor index before the extension")
+                    "Active floors to render in turn in one process, e.g. 0,1,2,1, or \"all\" "
+                    "(every floor of each scene, bottom to top); writes OUT with the floor "
+                    "index before the extension")
         ->excludes(floor);
     cmd->add_option("--view", render.view,
                     "normal | floor-alpha | accum-alpha | floor-rgb | violations | isolation")
@@ -40,14 +41,17 @@ int main(int argc, char** argv) {
                   "Do not read or write the pipeline cache in the user cache directory");
     cmd->add_option("--registry", render.registry,
                     "Validation registry that decides which plugins load (default: "
-                    "ACETATE_REGISTRY, else the build tree's validation/registry.json)");
+                    "ACETATE_REGISTRY, else the build tree's validation/registry.json, or "
+                    "$XDG_DATA_HOME/acetate/registry.json when installed)");
     cmd->add_flag("--allow-unvalidated", render.allow_unvalidated,
                   "Load plugins the registry does not have VALIDATED for their exact binary, "
                   "with a warning");
 
     try {
         app.parse(argc, argv);
-        if (!floors_list.empty()) {
+        if (floors_list == "all") {
+            render.all_floors = true;
+        } else if (cmd->count("--floors") > 0) {
             size_t start = 0;
             while (start <= floors_list.size()) {
                 const size_t comma = floors_list.find(',', start);
@@ -66,8 +70,10 @@ int main(int argc, char** argv) {
         // --help exits 0; every usage error exits 2 (docs/conventions.md, exit codes).
         return app.exit(e) == 0 ? 0 : 2;
     } catch (const std::exception&) {
-        std::fprintf(stderr, "acetate: --floors: expected floor indices like 0,1,2,1, got \"%s\"\n",
-                     floors_list.c_str());
+        std::fprintf(
+            stderr,
+            "acetate: --floors: expected floor indices like 0,1,2,1 or \"all\", got \"%s\"\n",
+            floors_list.c_str());
         return 2;
     }
     try {

@@ -176,6 +176,8 @@ int run_render(const RenderCommand& command) {
                          (unsigned long long)load.tile_texel_violations);
 
         std::vector<uint32_t> floors = command.floors;
+        if (command.all_floors)
+            for (uint32_t f = 0; f < scene.floors.size(); ++f) floors.push_back(f);
         if (floors.empty()) floors.push_back(command.floor.value_or(scene.active_floor));
         const bool several_floors = floors.size() > 1;
         nlohmann::json frames = nlohmann::json::array();

@@ -13,6 +13,7 @@ struct RenderCommand {
     std::filesystem::path output;                     // .exr or .png
     std::optional<uint32_t> floor;                    // --floor N
     std::vector<uint32_t> floors;                     // --floors 0,1,2,1
+    bool all_floors = false;                          // --floors all: 0..n-1 of each scene
     std::string view = "normal";                      // --view
     std::string format = "rgba16f";                   // --format
     std::optional<std::filesystem::path> stats;       // --stats FILE
