@@ -1,16 +1,66 @@
 #include "registry_location.hpp"
 
 #include <cstdlib>
+#include <system_error>
 
 namespace acetate {
+namespace fs = std::filesystem;
 
-std::filesystem::path registry_path(const std::optional<std::filesystem::path>& flag) {
-    if (flag && !flag->empty()) return *flag;
-    if (const char* env = std::getenv("ACETATE_REGISTRY"); env && *env) return env;
-    return ACETATE_DEFAULT_REGISTRY;
+namespace {
+
+// The running program's own file (argv[0] may be relative or a link).
+fs::path program_file() {
+    std::error_code ec;
+    fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? fs::path() : exe;
 }
 
-std::filesystem::path registry_markdown_path(const std::filesystem::path& registry) {
+fs::path same_file_form(const fs::path& p) {
+    std::error_code ec;
+    fs::path canonical = fs::weakly_canonical(p, ec);
+    return ec ? p.lexically_normal() : canonical;
+}
+
+// PREFIX for PREFIX/bin/program.
+fs::path install_prefix() {
+    return program_file().parent_path().parent_path();
+}
+
+}  // namespace
+
+bool running_from_build_tree() {
+    // Build-tree programs live one folder below the build root (build/host/acetate,
+    // build/harness/acetate-harness); an installed copy in PREFIX/bin does not, even when the
+    // prefix itself lies inside the build tree (as in the install test).
+    const fs::path exe = program_file();
+    return !exe.empty() &&
+           same_file_form(exe.parent_path().parent_path()) == same_file_form(ACETATE_BUILD_DIR);
+}
+
+fs::path default_registry_path() {
+    if (running_from_build_tree()) return fs::path(ACETATE_BUILD_DIR) / "validation/registry.json";
+    if (const char* data = std::getenv("XDG_DATA_HOME");
+        data && *data && fs::path(data).is_absolute())
+        return fs::path(data) / "acetate/registry.json";
+    const char* home = std::getenv("HOME");
+    return fs::path(home && *home ? home : "/") / ".local/share/acetate/registry.json";
+}
+
+std::optional<fs::path> default_signoffs_path() {
+    const fs::path file = running_from_build_tree() ? fs::path(ACETATE_SOURCE_SIGNOFFS)
+                                                    : install_prefix() / ACETATE_INSTALL_DATADIR /
+                                                          "acetate/validation/signoffs.json";
+    std::error_code ec;
+    return fs::is_regular_file(file, ec) ? std::optional(file) : std::nullopt;
+}
+
+fs::path registry_path(const std::optional<fs::path>& flag) {
+    if (flag && !flag->empty()) return *flag;
+    if (const char* env = std::getenv("ACETATE_REGISTRY"); env && *env) return env;
+    return default_registry_path();
+}
+
+fs::path registry_markdown_path(const fs::path& registry) {
     return registry.parent_path() / "VALIDATION-REGISTRY.md";
 }
 

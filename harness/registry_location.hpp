@@ -1,14 +1,29 @@
 #pragma once
-// Which registry file a tool uses: `--registry FILE`, else $ACETATE_REGISTRY, else the build
-// tree's own (<build>/validation/registry.json, fixed at configure time). The harness and
-// `acetate render` resolve it the same way, so what the harness records is what the host reads.
+// Which registry file a tool uses, and which committed sign-offs `validate` imports. The
+// harness and `acetate render` resolve them the same way, so what the harness records is what
+// the host reads (docs/registry.md, "Where the registry lives").
+//
+// Registry: `--registry FILE`, else $ACETATE_REGISTRY, else
+//   - a program run from its build tree (build/host/acetate): <build>/validation/registry.json;
+//   - an installed program (PREFIX/bin/acetate): $XDG_DATA_HOME/acetate/registry.json, else
+//     $HOME/.local/share/acetate/registry.json (the XDG base-directory default).
+// Sign-offs: `--signoffs FILE`, else the source tree's validation/signoffs.json (build tree) or
+// PREFIX/share/acetate/validation/signoffs.json (installed); none if that file is missing.
 
 #include <filesystem>
 #include <optional>
 
 namespace acetate {
 
+// True when the running program is the one in the build tree it was compiled in, false when it
+// was installed (or copied) anywhere else.
+bool running_from_build_tree();
+
 std::filesystem::path registry_path(const std::optional<std::filesystem::path>& flag);
+// The registry used when neither --registry nor $ACETATE_REGISTRY is given.
+std::filesystem::path default_registry_path();
+// The committed sign-offs `validate` imports by default, if that file exists.
+std::optional<std::filesystem::path> default_signoffs_path();
 // VALIDATION-REGISTRY.md beside the registry file.
 std::filesystem::path registry_markdown_path(const std::filesystem::path& registry);
 

@@ -7,6 +7,10 @@
 #
 # 1. cmake --install <BUILD_DIR> --prefix <WORK_DIR>/prefix, and checks the installed tree
 #    (CLI, headers, CMake package) and that the installed `acetate` runs (`--help`).
+#    The installed programs default to the user's registry ($XDG_DATA_HOME/acetate, else
+#    ~/.local/share/acetate), never the build tree's, and import the installed sign-offs:
+#    installed acetate-harness validates the installed lighting plugin into that registry, and
+#    installed acetate then loads it (and refuses it with an empty registry).
 # 2. Copies examples/out-of-tree-plugin to <WORK_DIR>/src, configures it in <WORK_DIR>/build
 #    with CMAKE_PREFIX_PATH=<WORK_DIR>/prefix (and checks find_package found that prefix), and
 #    builds it.
@@ -90,10 +94,62 @@ foreach(path
     ${LIBDIR}/cmake/Acetate/AcetateConfigVersion.cmake
     ${LIBDIR}/cmake/Acetate/AcetateTargets.cmake
     ${LIBDIR}/cmake/Acetate/AcetateEffect.cmake
-    ${LIBDIR}/cmake/Acetate/AcetateEmbedGlsl.cmake)
+    ${LIBDIR}/cmake/Acetate/AcetateEmbedGlsl.cmake
+    bin/acetate-harness
+    share/acetate/validation/signoffs.json
+    ${LIBDIR}/acetate/plugins/lighting.so)
   require_file("${prefix}/${path}")
 endforeach()
 run_step("installed acetate --help" "${prefix}/bin/acetate" --help)
+
+# ---- 1b. Installed programs find the user's registry and the installed sign-offs ----
+set(user_env "${CMAKE_COMMAND}" -E env --unset=ACETATE_REGISTRY "HOME=${WORK_DIR}/home")
+file(REMOVE_RECURSE "${WORK_DIR}/home" "${WORK_DIR}/xdg-data")
+run_step("installed acetate-harness status, XDG_DATA_HOME unset"
+  ${user_env} --unset=XDG_DATA_HOME "${prefix}/bin/acetate-harness" status)
+if(NOT step_output MATCHES "registry ${WORK_DIR}/home/.local/share/acetate/registry.json\n")
+  message(FATAL_ERROR "sdk_install_test: with XDG_DATA_HOME unset, the installed harness does "
+                      "not use ~/.local/share/acetate/registry.json:\n${step_output}")
+endif()
+set(xdg_env ${user_env} "XDG_DATA_HOME=${WORK_DIR}/xdg-data")
+set(xdg_registry "${WORK_DIR}/xdg-data/acetate/registry.json")
+run_step("installed acetate-harness status" ${xdg_env} "${prefix}/bin/acetate-harness" status)
+if(NOT step_output MATCHES "registry ${xdg_registry}\n")
+  message(FATAL_ERROR "sdk_install_test: the installed harness does not use "
+                      "$XDG_DATA_HOME/acetate/registry.json:\n${step_output}")
+endif()
+
+# A one-floor scene that names the installed lighting plugin, with the installed art.
+set(art "${prefix}/share/acetate/examples/harbour")
+file(WRITE "${WORK_DIR}/lit.json" "{\"format\": \"acetate-scene/1\",
+  \"canvas\": {\"width\": 160, \"height\": 90},
+  \"floors\": [{\"name\": \"ground\",
+    \"tiles\": [{\"image\": \"${art}/ground.png\", \"rect\": [0, 0, 160, 90]}],
+    \"lights\": [{\"pos\": [80, 45], \"radius\": 60, \"color\": [1, 0.8, 0.6], \"intensity\": 2}],
+    \"effects\": [{\"plugin\": \"acetate.lighting\"}]}]}")
+set(render_env ${xdg_env} ACETATE_VALIDATION=1 "MESA_SHADER_CACHE_DIR=${WORK_DIR}/cache/mesa"
+  "XDG_CACHE_HOME=${WORK_DIR}/cache/xdg")
+file(MAKE_DIRECTORY "${WORK_DIR}/cache/mesa" "${WORK_DIR}/cache/xdg")
+execute_process(COMMAND ${render_env} "${prefix}/bin/acetate" render "${WORK_DIR}/lit.json"
+  -o "${WORK_DIR}/lit.png" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(rc EQUAL 0 OR NOT out MATCHES "registry ${xdg_registry}")
+  message(FATAL_ERROR "sdk_install_test: installed acetate did not refuse the unvalidated "
+                      "plugin naming the user's registry (exit ${rc}):\n${out}")
+endif()
+message(STATUS "ok: installed acetate refuses an unvalidated plugin, naming ${xdg_registry}")
+run_step("installed acetate-harness validate lighting.so (installed sign-offs)"
+  ${render_env} "${prefix}/bin/acetate-harness" validate "${prefix}/${LIBDIR}/acetate/plugins/lighting.so"
+  --report "${WORK_DIR}/lighting-report")
+if(NOT step_output MATCHES "share/acetate/validation/signoffs.json")
+  message(FATAL_ERROR "sdk_install_test: validate did not import the installed sign-offs:\n${step_output}")
+endif()
+run_step("installed acetate-harness status after validate" ${xdg_env} "${prefix}/bin/acetate-harness" status)
+if(NOT step_output MATCHES "acetate.lighting[^\n]*VALIDATED")
+  message(FATAL_ERROR "sdk_install_test: lighting is not VALIDATED in ${xdg_registry}:\n${step_output}")
+endif()
+run_step("installed acetate renders with the plugin it validated" ${render_env}
+  "${prefix}/bin/acetate" render "${WORK_DIR}/lit.json" -o "${WORK_DIR}/lit.png")
+require_file("${WORK_DIR}/lit.png")
 
 # ---- 2. Build the out-of-tree example against the installed prefix ----
 file(COPY "${SOURCE_DIR}/examples/out-of-tree-plugin" DESTINATION "${WORK_DIR}/src")

@@ -53,12 +53,6 @@ Result<fs::path> scratch_directory() {
     return fs::path(name);
 }
 
-std::optional<fs::path> default_signoffs() {
-    std::error_code ec;
-    const fs::path committed = ACETATE_SIGNOFFS_FILE;
-    return fs::exists(committed, ec) ? std::optional(committed) : std::nullopt;
-}
-
 Result<PluginInfo> describe(const fs::path& plugin) {
     auto scratch = scratch_directory();
     if (!scratch) return scratch.error();
@@ -221,7 +215,8 @@ int main(int argc, char** argv) {
     std::optional<fs::path> registry_flag;
     app.add_option("--registry", registry_flag,
                    "Registry file (default: $ACETATE_REGISTRY, else the build tree's "
-                   "validation/registry.json)");
+                   "validation/registry.json, or $XDG_DATA_HOME/acetate/registry.json when "
+                   "installed)");
 
     ValidateOptions validate;
     std::string stage_name = "integrated";
@@ -248,7 +243,9 @@ int main(int argc, char** argv) {
                   "Run only this case (repeatable), e.g. to reproduce a failure; records nothing");
     v->add_option("--plugin-path", validate.plugin_paths,
                   "Where to find the other integrated plugins (then the default search path)");
-    v->add_option("--signoffs", signoffs_flag, "Committed sign-offs to import");
+    v->add_option("--signoffs", signoffs_flag,
+                  "Committed sign-offs to import (default: the source tree's, or the "
+                  "installation's share/acetate/validation/signoffs.json)");
     v->add_flag("--no-signoffs", no_signoffs, "Import no committed sign-offs");
 
     fs::path review_plugin, promote_plugin;
@@ -292,7 +289,7 @@ int main(int argc, char** argv) {
             validate.self = self_path();
             validate.signoffs = no_signoffs     ? std::nullopt
                                 : signoffs_flag ? signoffs_flag
-                                                : default_signoffs();
+                                                : default_signoffs_path();
             // Absolute: children run with their own folders, and the scenes they write name
             // their images by path.
             validate.report_directory = fs::absolute(
