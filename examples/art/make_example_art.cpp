@@ -440,7 +440,7 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(dir);
     bool ok = true;
 
-    Img ground(1240, 720), water(1240, 720);
+    Img ground(1280, 720), water(1280, 720);
     drawGround(ground, water);
     ok &= save(dir / "ground.png", ground) && save(dir / "ground_Water.png", water, true);
 
