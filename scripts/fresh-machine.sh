@@ -85,6 +85,7 @@ fi
 [ -s "$tarball" ] || make_base_root
 
 root=$(mktemp -d /tmp/acetate-fresh.XXXXXX)
+chmod 755 "$root"  # it becomes "/": mktemp's 0700 would stop every user but root at the top
 mounts=(proc sys dev/pts dev var/cache/apt/archives)
 cleanup() {
   local m
