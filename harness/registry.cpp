@@ -13,11 +13,14 @@
 #include <charconv>
 #include <cstring>
 #include <ctime>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <regex>
 
 #include "core/atomic_file.hpp"
+#include "core/input_file.hpp"
 #include "core/sha256.hpp"
+#include "core/strict_json.hpp"
 #include "json_fields.hpp"
 #include "plugins/effect_descriptor.hpp"
 
@@ -168,30 +171,6 @@ bool entry_less(const RegistryEntry& a, const RegistryEntry& b) {
 
 // ---- file helpers ---------------------------------------------------------------------------
 
-// The whole file; nullopt when it does not exist.
-Result<std::optional<std::string>> read_file(const fs::path& file) {
-    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
-        if (errno == ENOENT) return std::optional<std::string>();
-        return io_error(file, "cannot open", errno);
-    }
-    std::string bytes;
-    char buffer[1 << 16];
-    for (;;) {
-        const ssize_t n = ::read(fd, buffer, sizeof buffer);
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0) {
-            const int err = errno;
-            ::close(fd);
-            return io_error(file, "cannot read", err);
-        }
-        if (n == 0) break;
-        bytes.append(buffer, size_t(n));
-    }
-    ::close(fd);
-    return std::optional<std::string>(std::move(bytes));
-}
-
 // An exclusive flock held until destruction (closing the descriptor releases it).
 class ExclusiveLock {
   public:
@@ -212,21 +191,6 @@ class ExclusiveLock {
   private:
     int fd_ = -1;
 };
-
-// Removes `<stem>.tmp-<pid>-<n><ext>` siblings of `file` (see temp_sibling). Called under the
-// lock, when no other writer can be mid-write, so every such file is a killed writer's.
-void remove_stale_temps(const fs::path& file) {
-    const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
-    const std::regex pattern(
-        std::regex_replace(file.stem().string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
-        R"(\.tmp-\d+-\d+)" +
-        std::regex_replace(file.extension().string(), std::regex(R"(\.)"), R"(\.)"));
-    std::error_code ec;
-    for (const auto& item : fs::directory_iterator(dir, ec)) {
-        if (item.is_regular_file(ec) && std::regex_match(item.path().filename().string(), pattern))
-            fs::remove(item.path(), ec);
-    }
-}
 
 // ---- JSON reading -------------------------------------------------------------------------
 // Field errors (json_fields.hpp) are caught in Registry::parse.
@@ -559,18 +523,11 @@ std::string Registry::explain(std::string_view id, std::string_view binary_sha25
 // ---- the file -------------------------------------------------------------------------------
 
 Result<Registry> Registry::parse(std::string_view json_text, std::string_view name) {
-    json doc;
-    try {
-        doc = json::parse(json_text);
-    } catch (const json::exception& e) {
-        std::string what = e.what();  // "[json.exception.parse_error.101] parse error at ..."
-        if (const size_t close = what.find("] "); close != std::string::npos)
-            what = what.substr(close + 2);
-        // nlohmann quotes what it last read, which can be megabytes: keep the line and column.
-        if (const size_t quote = what.find("; last read:"); quote != std::string::npos)
-            what.resize(quote);
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: not JSON: {}", name, what));
-    }
+    // Strict: a key written twice (a second binary_sha256 in an entry, say) is refused, so
+    // what a reviewer reads in the file is what the host uses.
+    auto parsed = parse_json_strict(json_text, name);
+    if (!parsed) return parsed.error();
+    const json& doc = parsed.value();
     Registry registry;
     try {
         expect_object(doc, "", {"format", "plugins"});
@@ -594,7 +551,7 @@ Result<Registry> Registry::parse(std::string_view json_text, std::string_view na
 }
 
 Result<Registry> Registry::load(const fs::path& file) {
-    auto bytes = read_file(file);
+    auto bytes = read_input_file_if_exists(file, kMaxRegistryFileBytes, "a registry");
     if (!bytes) return bytes.error();
     if (!bytes.value()) return Registry();
     return parse(*bytes.value(), file.string());
@@ -634,8 +591,9 @@ Result<void> Registry::update(const fs::path& file,
     lock_file += ".lock";
     ExclusiveLock lock;
     ACETATE_TRY(lock.acquire(lock_file));
-    remove_stale_temps(file);
-    if (!markdown.empty()) remove_stale_temps(markdown);
+    // A writer killed where O_TMPFILE is unavailable leaves a named temporary: clear those.
+    remove_dead_writers_temporaries(file);
+    if (!markdown.empty()) remove_dead_writers_temporaries(markdown);
 
     auto loaded = load(file);
     if (!loaded) return loaded.error();
@@ -702,10 +660,11 @@ Result<void> write_registry_markdown(const Registry& registry, const fs::path& f
 }
 
 Result<std::string> file_sha256(const fs::path& file) {
-    auto bytes = read_file(file);
+    // A plugin binary has no size limit of its own; it is still opened without blocking and
+    // read only when it is a regular file.
+    auto bytes = read_input_file(file, std::numeric_limits<std::uint64_t>::max(), "a plugin");
     if (!bytes) return bytes.error();
-    if (!bytes.value()) return io_error(file, "cannot open", ENOENT);
-    return sha256_hex(*bytes.value());
+    return sha256_hex(bytes.value());
 }
 
 std::string utc_now_iso8601() {

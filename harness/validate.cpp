@@ -7,13 +7,14 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "case_runner.hpp"
 #include "child_process.hpp"
 #include "contract_checks.hpp"
 #include "core/atomic_file.hpp"
+#include "core/input_file.hpp"
+#include "core/strict_json.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "registry_location.hpp"
 #include "report.hpp"
@@ -32,14 +33,9 @@ std::string slug(const std::string& id) {
     return out;
 }
 
+// A file a child wrote: a child runs plugin code, so it is read like any untrusted input.
 Result<json> read_json(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) return make_error(ErrorCode::Io, fmt::format("{}: cannot open", file.string()));
-    try {
-        return json::parse(in);
-    } catch (const json::exception& e) {
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}", file.string(), e.what()));
-    }
+    return read_json_file(file, kMaxHarnessFileBytes, "a harness file");
 }
 
 // The last non-empty line of a child's log: its one-line error, when it wrote one.

@@ -312,6 +312,57 @@ TEST(CliBadInput, EmptyFloorsList) {
     EXPECT_FALSE(fs::exists(dir / "out.png"));
 }
 
+TEST(CliBadInput, TimeThatIsNotAFiniteNumber) {
+    for (const char* time : {"nan", "inf", "-inf", "1e39"}) {
+        const fs::path dir = write_scene();
+        const CliRun run =
+            run_acetate(dir, std::string("render scene.json -o out.png --time ") + time);
+        expect_refused(run, {"--time"});
+        EXPECT_FALSE(fs::exists(dir / "out.png")) << time;
+    }
+}
+
+TEST(CliBadInput, UppercaseOutputExtension) {
+    const fs::path dir = write_scene();
+    const CliRun run = run_acetate(dir, "render scene.json -o out.PNG");
+    expect_refused(run, {"out.PNG", ".png"});
+    EXPECT_FALSE(fs::exists(dir / "out.PNG"));
+}
+
+// Outputs never destroy inputs: each refusal names both files, and the input is unchanged.
+TEST(CliBadInput, OutputOntoATileImage) {
+    const fs::path dir = write_scene();
+    const std::string before = test::read_file(dir / "a.exr");
+    const CliRun run = run_acetate(dir, "render scene.json -o a.exr");
+    expect_refused(run, {"-o", "a.exr", "floors[0].tiles[0].image"});
+    EXPECT_EQ(test::read_file(dir / "a.exr"), before);
+}
+
+TEST(CliBadInput, OutputOntoATileImageThroughALink) {
+    const fs::path dir = write_scene();
+    fs::create_symlink(dir / "a.exr", dir / "link.exr");
+    const std::string before = test::read_file(dir / "a.exr");
+    const CliRun run = run_acetate(dir, "render scene.json -o link.exr");
+    expect_refused(run, {"link.exr", "a.exr"});
+    EXPECT_EQ(test::read_file(dir / "a.exr"), before);
+}
+
+TEST(CliBadInput, StatsOntoTheScene) {
+    const fs::path dir = write_scene();
+    const std::string before = test::read_file(dir / "scene.json");
+    const CliRun run = run_acetate(dir, "render scene.json -o out.png --stats ./scene.json");
+    expect_refused(run, {"--stats", "scene.json"});
+    EXPECT_EQ(test::read_file(dir / "scene.json"), before);
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
+TEST(CliBadInput, OutputAndStatsOnOnePath) {
+    const fs::path dir = write_scene();
+    const CliRun run = run_acetate(dir, "render scene.json -o out.png --stats out.png");
+    expect_refused(run, {"--stats", "out.png", "-o"});
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
 TEST(CliBadInput, UnsupportedOutputExtension) {
     const fs::path dir = write_scene();
     const CliRun run = run_acetate(dir, "render scene.json -o out.bmp");
@@ -524,6 +575,57 @@ INSTANTIATE_TEST_SUITE_P(AllViews, HarbourView, ::testing::ValuesIn(kViews),
                              std::replace(name.begin(), name.end(), '-', '_');
                              return name;
                          });
+
+}  // namespace
+}  // namespace acetate
+
+// ---------------------------------------------------------------------------------------------
+// A hostile registry: a FIFO given as --registry is refused at once, not waited on forever.
+// (Appended as its own block, includes and all, so it touches no other test.)
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <thread>
+
+namespace acetate {
+namespace {
+
+TEST(CliBadInput, FifoRegistryIsRefusedAtOnce) {
+    SceneText scene;  // it names a plugin, so the registry is read
+    scene.upper_extra = R"(, "effects": [ { "plugin": "com.example.glow" } ])";
+    const fs::path dir = write_scene(scene);
+    const fs::path fifo = dir / "registry.fifo";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+    // A host blocked on the FIFO is released after 10 s (a writer comes and goes, so it reads
+    // end of file): the test then fails on the time taken instead of hanging.
+    std::atomic<bool> done{false};
+    std::thread watchdog([&] {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while (!done && std::chrono::steady_clock::now() < deadline)
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        while (!done) {
+            if (const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC); fd >= 0)
+                ::close(fd);
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+    });
+    const auto start = std::chrono::steady_clock::now();
+    const CliRun run = run_acetate(dir, "render scene.json --registry registry.fifo -o out.png");
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    done = true;
+    watchdog.join();
+    expect_refused(run, {"acetate: registry.fifo: not a regular file (a FIFO)"});
+    EXPECT_EQ(run.code, 1) << run.describe();
+    EXPECT_LT(seconds, 5.0) << "the registry is refused before anything waits on it";
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
 
 }  // namespace
 }  // namespace acetate

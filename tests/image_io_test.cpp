@@ -4,12 +4,16 @@
 #include "scene/image_io.hpp"
 
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
@@ -297,9 +301,110 @@ TEST(ImageIoTest, FailedWritesNameTheFileAndLeaveNothing) {
     EXPECT_EQ(atomic.error().message.rfind((dir / "no-such-dir" / "x.bin").string() + ": ", 0), 0u)
         << atomic.error().message;
 
+    // The image is encoded in memory; what fails is writing it, and the line says why.
     auto image = save_image(dir / "no-such-dir" / "x.png", ImageRGBA(1, 1));
     ASSERT_FALSE(image.ok());
-    EXPECT_EQ(image.error().code, ErrorCode::ImageEncode);
+    EXPECT_EQ(image.error().code, ErrorCode::Io);
+    EXPECT_EQ(image.error().message.rfind((dir / "no-such-dir" / "x.png").string() + ": ", 0), 0u)
+        << image.error().message;
+    EXPECT_NE(image.error().message.find("No such file or directory"), std::string::npos)
+        << image.error().message;
+    EXPECT_TRUE(files_in(dir).empty());
+}
+
+// An image no encoder can squeeze: every byte random, so the file is about as big as the data.
+ImageRGBA incompressible(uint32_t side) {
+    ImageRGBA image(side, side);
+    uint32_t state = 12345;
+    for (float& v : image.pixels) {
+        state = state * 1664525u + 1013904223u;
+        v = float(state >> 8) / float(1u << 24);
+    }
+    for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 1.0f;
+    return image;
+}
+
+// A full disk: the write fails with one line naming the file and the cause, the good file that
+// was there stays as it was, and no temporary is left. Needs a small tmpfs, so root.
+TEST(ImageIoTest, FullDiskKeepsTheOldFileForBothFormats) {
+    if (::geteuid() != 0) GTEST_SKIP() << "mounting a small tmpfs needs root";
+    const fs::path dir = test::scratch_dir() / "full";
+    fs::create_directories(dir);
+    ASSERT_EQ(std::system(("mount -t tmpfs -o size=256k tmpfs " + dir.string()).c_str()), 0)
+        << "cannot mount a tmpfs on " << dir;
+    struct Unmount {
+        fs::path dir;
+        ~Unmount() { (void)std::system(("umount -l " + dir.string()).c_str()); }
+    } unmount{dir};
+    for (const char* name : {"frame.png", "frame.exr"}) {
+        const fs::path file = dir / name;
+        ASSERT_TRUE(save_image(file, ImageRGBA(2, 2)).ok());
+        const std::string before = test::read_file(file);
+        ASSERT_FALSE(before.empty());
+        auto saved = save_image(file, incompressible(512));  // over 768 KiB encoded, 256 KiB disk
+        ASSERT_FALSE(saved.ok()) << name << " was written to a disk too small for it";
+        EXPECT_EQ(saved.error().code, ErrorCode::Io);
+        EXPECT_EQ(saved.error().message.rfind(file.string() + ": ", 0), 0u)
+            << saved.error().message;
+        EXPECT_NE(saved.error().message.find("No space left on device"), std::string::npos)
+            << saved.error().message;
+        EXPECT_EQ(saved.error().message.find('\n'), std::string::npos) << saved.error().message;
+        EXPECT_EQ(test::read_file(file), before) << name << " lost its old content";
+    }
+    EXPECT_EQ(files_in(dir), (std::vector<fs::path>{"frame.exr", "frame.png"}));
+}
+
+// SIGKILL in the middle of a write leaves no temporary: the data goes to an unnamed file until
+// it is complete.
+TEST(ImageIoTest, KilledWriterLeavesNoTemporary) {
+    const fs::path dir = test::scratch_dir();
+    const std::string big(256u << 20, 'x');  // long enough to be mid-write when killed
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        (void)write_file_atomically(dir / "big.bin", big);
+        ::_exit(0);
+    }
+    ::usleep(30 * 1000);
+    ::kill(child, SIGKILL);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    for (const fs::path& name : files_in(dir))
+        EXPECT_EQ(name.string().find(".tmp-"), std::string::npos) << "left behind: " << name;
+}
+
+// A named temporary of a writer that no longer runs (killed where O_TMPFILE is unavailable) is
+// removed by the next write of the same file; a live writer's is left alone.
+TEST(ImageIoTest, DeadWritersTemporariesAreRemoved) {
+    const fs::path dir = test::scratch_dir();
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);  // a pid that no longer exists (until it is reused)
+    const fs::path dead = dir / fmt::format("out.tmp-{}-0.png", child);
+    const fs::path live = dir / fmt::format("out.tmp-{}-7.png", ::getpid());
+    test::write_text(dead, "half");
+    test::write_text(live, "in progress");
+    remove_dead_writers_temporaries(dir / "out.png");
+    EXPECT_FALSE(fs::exists(dead));
+    EXPECT_TRUE(fs::exists(live));
+}
+
+TEST(ImageIoTest, NonRegularTargetsAreNotReplaced) {
+    const fs::path dir = test::scratch_dir();
+    fs::create_directory(dir / "folder.png");
+    auto saved = save_image(dir / "folder.png", ImageRGBA(1, 1));
+    ASSERT_FALSE(saved.ok());
+    EXPECT_NE(saved.error().message.find("it is a folder"), std::string::npos)
+        << saved.error().message;
+    EXPECT_TRUE(fs::is_directory(dir / "folder.png"));
+}
+
+TEST(ImageIoTest, OutputExtensionIsExact) {
+    const fs::path dir = test::scratch_dir();
+    auto saved = save_image(dir / "out.PNG", ImageRGBA(1, 1));
+    ASSERT_FALSE(saved.ok());
+    EXPECT_EQ(saved.error().code, ErrorCode::InvalidInput);
     EXPECT_TRUE(files_in(dir).empty());
 }
 

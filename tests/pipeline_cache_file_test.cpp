@@ -5,13 +5,18 @@
 
 #include "vulkan/pipeline_cache_file.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <future>
 #include <iterator>
 #include <optional>
 #include <string>
@@ -315,12 +320,32 @@ TEST_F(PipelineCacheFileTest, FailedWriteLeavesTheOldFileAndNoTemporaries) {
     EXPECT_EQ(*read, old_data);
 }
 
-TEST_F(PipelineCacheFileTest, DirectoryInPlaceOfTheFileIsAnIoError) {
+TEST_F(PipelineCacheFileTest, DirectoryInPlaceOfTheFileIsRefused) {
     fs::create_directories(file());
     auto read = read_pipeline_cache(file(), test_identity());
     ASSERT_FALSE(read.ok());
-    EXPECT_EQ(read.error().code, ErrorCode::Io);
-    EXPECT_NE(read.error().message.find("not a regular file"), std::string::npos);
+    EXPECT_EQ(read.error().code, ErrorCode::InvalidInput);
+    EXPECT_NE(read.error().message.find("not a regular file (a directory)"), std::string::npos)
+        << read.error().message;
+}
+
+// A FIFO where the cache should be is refused at once; opening it to read would wait forever
+// for a writer.
+TEST_F(PipelineCacheFileTest, FifoInPlaceOfTheFileIsRefusedAtOnce) {
+    fs::create_directories(file().parent_path());
+    ASSERT_EQ(::mkfifo(file().c_str(), 0644), 0);
+    auto pending = std::async(std::launch::async,
+                              [&] { return read_pipeline_cache(file(), test_identity()); });
+    if (pending.wait_for(std::chrono::seconds(10)) != std::future_status::ready) {
+        // Release the blocked reader so the test can end, then fail.
+        const int writer = ::open(file().c_str(), O_WRONLY | O_NONBLOCK);
+        if (writer >= 0) ::close(writer);
+        FAIL() << "read_pipeline_cache blocked on a FIFO";
+    }
+    auto read = pending.get();
+    ASSERT_FALSE(read.ok());
+    EXPECT_NE(read.error().message.find("not a regular file (a FIFO)"), std::string::npos)
+        << read.error().message;
 }
 
 TEST(PipelineCacheIdentityTest, IdentityOfCopiesTheProperties) {

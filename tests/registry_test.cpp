@@ -5,18 +5,25 @@
 
 #include "registry.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/file.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
 #include <thread>
 
+#include "core/input_file.hpp"
 #include "core/sha256.hpp"
 
 namespace acetate {
@@ -356,8 +363,8 @@ TEST_F(RegistryFiles, MalformedFileNamesTheField) {
         return at == std::string::npos ? s : s.replace(at, from.size(), to);
     };
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {"{ not json", "reg.json: not JSON: "},
-        {good.substr(0, good.size() / 2), "reg.json: not JSON: parse error at line "},
+        {"{ not json", "reg.json: malformed JSON: "},
+        {good.substr(0, good.size() / 2), "reg.json: malformed JSON: parse error at line "},
         {edited("acetate-registry/1", "acetate-registry/2"),
          "reg.json: format: \"acetate-registry/2\" is not \"acetate-registry/1\""},
         {edited("\"at\": \"" + kNow, "\"at\": \"yesterday"),
@@ -461,8 +468,11 @@ TEST_F(RegistryFiles, WriterKilledMidWriteLeavesPreviousFile) {
     }));
     const std::string before = read_text(file);
 
-    // The child records a review with 32 MiB of notes, so writing the temporary takes long
-    // enough to be caught: the parent kills it as soon as the temporary has bytes in it.
+    // The child records a review with 32 MiB of notes, so serialising and writing take long
+    // enough to be caught: the parent kills it a few milliseconds after it takes the lock.
+    const int lock =
+        ::open((dir / "registry.json.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    ASSERT_GE(lock, 0);
     const pid_t pid = fork_child([&] {
         auto updated = Registry::update(file, [](Registry& r) {
             return r.record_review("org.acetate.huge", "1.0.0", kBinaryB, kSource2, "mallory",
@@ -471,22 +481,26 @@ TEST_F(RegistryFiles, WriterKilledMidWriteLeavesPreviousFile) {
         return updated ? 0 : 1;
     });
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    bool caught_mid_write = false;
-    while (!caught_mid_write && std::chrono::steady_clock::now() < deadline) {
-        std::error_code ec;
-        for (const fs::path& temp : temporaries_in(dir))
-            if (fs::file_size(temp, ec) > 0 && !ec) caught_mid_write = true;
-        if (!caught_mid_write) std::this_thread::yield();
+    bool caught_writing = false;
+    while (!caught_writing && std::chrono::steady_clock::now() < deadline) {
+        if (::flock(lock, LOCK_EX | LOCK_NB) == 0)
+            ::flock(lock, LOCK_UN);  // not yet: the child has not taken the lock
+        else
+            caught_writing = errno == EWOULDBLOCK;
+        if (!caught_writing) std::this_thread::yield();
     }
+    ::usleep(5000);
     ::kill(pid, SIGKILL);
+    ::close(lock);
     int status = 0;
     ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-    ASSERT_TRUE(caught_mid_write) << "the child never started its write";
+    ASSERT_TRUE(caught_writing) << "the child never took the lock";
     ASSERT_TRUE(WIFSIGNALED(status)) << "the child finished before it was killed";
 
     EXPECT_EQ(read_text(file), before) << "the previous registry is intact";
-    EXPECT_FALSE(temporaries_in(dir).empty()) << "the killed writer's temporary is left";
-    // The kill released the lock; the next update cleans up and works.
+    // The write goes through an unnamed temporary: a killed writer leaves nothing behind.
+    EXPECT_TRUE(temporaries_in(dir).empty()) << "the killed writer left a temporary";
+    // The kill released the lock; the next update works.
     ASSERT_TRUE(Registry::update(file, [](Registry& r) {
         return r.record_review("org.acetate.next", "1.0.0", kBinaryB, kSource2, "alice", "");
     }));
@@ -523,6 +537,149 @@ TEST_F(RegistryFiles, WritersKilledAtRandomPointsNeverCorruptTheFile) {
         EXPECT_GE(loaded->entries().size(), entries_before) << "round " << round;
         entries_before = loaded->entries().size();
     }
+}
+
+// ---- hostile files --------------------------------------------------------------------------
+
+// What Registry::load said, asked in a child process held to `seconds` and to 1 GiB more address
+// space than it starts with: a reader that blocks on a FIFO or reads /dev/zero without end is
+// killed and fails the test, instead of hanging it or exhausting the machine's memory.
+struct BoundedLoad {
+    bool finished = false;  // the child exited by itself
+    bool loaded = false;    // Registry::load succeeded
+    std::string message;    // its error otherwise
+    std::string ending;     // how the child ended, for a failing assertion
+    double seconds = 0;
+};
+
+BoundedLoad load_in_bounded_child(const fs::path& file, unsigned seconds = 10) {
+    BoundedLoad outcome;
+    int fds[2];
+    if (::pipe(fds) != 0) return outcome;
+    long pages = 0;
+    std::ifstream("/proc/self/statm") >> pages;
+    const rlim_t address_space =
+        rlim_t(pages) * rlim_t(::sysconf(_SC_PAGESIZE)) + (rlim_t(1) << 30);
+    const auto start = std::chrono::steady_clock::now();
+    const pid_t pid = fork_child([&] {
+        ::close(fds[0]);
+        const rlimit limit{address_space, address_space};
+        ::setrlimit(RLIMIT_AS, &limit);
+        ::alarm(seconds);
+        std::string report;
+        try {  // nothing may unwind into the child's copy of the test runner
+            auto loaded = Registry::load(file);
+            report = loaded ? "ok" : "error " + loaded.error().message;
+        } catch (const std::exception& e) {
+            report = std::string("threw ") + e.what();
+        }
+        for (size_t done = 0; done < report.size();) {
+            const ssize_t n = ::write(fds[1], report.data() + done, report.size() - done);
+            if (n <= 0) return 3;
+            done += size_t(n);
+        }
+        return 0;
+    });
+    ::close(fds[1]);
+    std::string report;
+    char buffer[4096];
+    for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) != 0;) {
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) break;
+        report.append(buffer, size_t(n));
+    }
+    ::close(fds[0]);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    outcome.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    outcome.finished = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    outcome.ending = WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status)) +
+                                               (WTERMSIG(status) == SIGALRM ? " (it blocked)" : "")
+                                         : "exit status " + std::to_string(WEXITSTATUS(status));
+    outcome.loaded = report == "ok";
+    if (report.rfind("error ", 0) == 0) outcome.message = report.substr(6);
+    if (report.rfind("threw ", 0) == 0) {
+        outcome.finished = false;
+        outcome.ending += ", the load " + report;
+    }
+    return outcome;
+}
+
+TEST_F(RegistryFiles, DuplicateKeysAreRefusedNamingTheField) {
+    const std::string good = validated_registry().to_json();
+    // A reviewer reading the entry sees binary B first; a parser keeping the last key would
+    // validate binary A.
+    const std::string field = "\"binary_sha256\": \"" + kBinaryA + "\"";
+    const size_t at = good.find(field);
+    ASSERT_NE(at, std::string::npos);
+    std::string twice = good;
+    twice.replace(at, field.size(), "\"binary_sha256\": \"" + kBinaryB + "\",\n    " + field);
+    auto parsed = Registry::parse(twice, "reg.json");
+    ASSERT_FALSE(parsed) << "accepted; binary A is "
+                         << to_string(parsed->binary_stage(kId, kBinaryA));
+    EXPECT_EQ(parsed.error().code, ErrorCode::InvalidInput);
+    EXPECT_EQ(parsed.error().message, "reg.json: plugins[0]: duplicate field \"binary_sha256\"");
+
+    // Deeper down and at the top: the path names the object holding the key.
+    std::string by = good;
+    by.replace(by.find("\"by\": \"alice\""), 13, "\"by\": \"alice\", \"by\": \"mallory\"");
+    auto signer = Registry::parse(by, "reg.json");
+    ASSERT_FALSE(signer);
+    EXPECT_EQ(signer.error().message, "reg.json: plugins[0].review: duplicate field \"by\"");
+    auto format = Registry::parse(
+        R"({"format": "acetate-registry/1", "plugins": [], "format": "acetate-registry/1"})",
+        "reg.json");
+    ASSERT_FALSE(format);
+    EXPECT_EQ(format.error().message, "reg.json: duplicate field \"format\"");
+
+    // Registry::load reads through the same parser.
+    std::ofstream(dir_ / "twice.json") << twice;
+    auto loaded = Registry::load(dir_ / "twice.json");
+    ASSERT_FALSE(loaded);
+    EXPECT_EQ(loaded.error().message,
+              (dir_ / "twice.json").string() + ": plugins[0]: duplicate field \"binary_sha256\"");
+}
+
+TEST_F(RegistryFiles, FifoIsRefusedWithoutBlocking) {
+    const fs::path fifo = dir_ / "registry.json";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+    const BoundedLoad run = load_in_bounded_child(fifo);
+    ASSERT_TRUE(run.finished) << run.ending;
+    EXPECT_FALSE(run.loaded);
+    EXPECT_EQ(run.message, fifo.string() + ": not a regular file (a FIFO)");
+    EXPECT_LT(run.seconds, 5.0);
+}
+
+TEST_F(RegistryFiles, DevicesAndDirectoriesAreRefusedUnread) {
+    const BoundedLoad zero = load_in_bounded_child("/dev/zero");
+    ASSERT_TRUE(zero.finished) << zero.ending;
+    EXPECT_FALSE(zero.loaded);
+    EXPECT_EQ(zero.message, "/dev/zero: not a regular file (a character device)");
+    EXPECT_LT(zero.seconds, 5.0);
+
+    auto folder = Registry::load(dir_);
+    ASSERT_FALSE(folder);
+    EXPECT_EQ(folder.error().code, ErrorCode::InvalidInput);
+    EXPECT_EQ(folder.error().message, dir_.string() + ": not a regular file (a directory)");
+}
+
+TEST_F(RegistryFiles, FileOverTheLimitIsRefusedUnread) {
+    // Sparse: one byte over the limit takes no disk and, refused by its size, no time.
+    const fs::path file = dir_ / "registry.json";
+    std::ofstream(file).close();
+    ASSERT_EQ(::truncate(file.c_str(), off_t(kMaxRegistryFileBytes + 1)), 0);
+    static_assert(kMaxRegistryFileBytes == 64 << 20, "the message below states the limit");
+    const auto start = std::chrono::steady_clock::now();
+    auto loaded = Registry::load(file);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ASSERT_FALSE(loaded);
+    EXPECT_EQ(loaded.error().code, ErrorCode::InvalidInput);
+    EXPECT_EQ(
+        loaded.error().message,
+        file.string() + ": 64.0 MiB (67108865 bytes) is over the 64 MiB limit for a registry");
+    EXPECT_LT(seconds, 0.5) << "refused by its size, before reading";
 }
 
 }  // namespace

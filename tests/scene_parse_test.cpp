@@ -1,11 +1,22 @@
 // Scene parsing: the format's example scene parses with resolved paths and defaults; every kind of
 // bad input gives one line naming the file, the JSON path and what is wrong.
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <chrono>
+#include <climits>
+#include <cstring>
 #include <filesystem>
+#include <future>
+#include <stdexcept>
 #include <string>
+#include <thread>
 
+#include "core/input_file.hpp"
 #include "scene/scene.hpp"
 #include "test_files.hpp"
 
@@ -239,6 +250,42 @@ TEST_F(SceneParseTest, TileSizeMustBePositive) {
               expected("floors[1].tiles[0].rect[0]: must be a number, got \"left\""));
 }
 
+// The GPU takes 32-bit floats: numbers it cannot hold as pixels are refused at parse time.
+TEST_F(SceneParseTest, TileRectStaysWithinFloatPixels) {
+    const std::pair<std::pair<int, double>, std::string> cases[] = {
+        {{0, 1e308},
+         "floors[1].tiles[0].rect[0]: must lie within +-16777216 scene pixels (2^24, where 32-bit "
+         "floats still hold whole pixels), got 1e+308"},
+        {{1, -1e39},
+         "floors[1].tiles[0].rect[1]: must lie within +-16777216 scene pixels (2^24, where 32-bit "
+         "floats still hold whole pixels), got -1e+39"},
+        {{2, 1e-300}, "floors[1].tiles[0].rect[2]: width must be at least 1/256 pixel, got 1e-300"},
+        {{3, 0.001}, "floors[1].tiles[0].rect[3]: height must be at least 1/256 pixel, got 0.001"},
+    };
+    for (const auto& [change, message] : cases) {
+        SCOPED_TRACE(message);
+        SetUp();
+        scene_["floors"][1]["tiles"][0]["rect"][change.first] = change.second;
+        EXPECT_EQ(error_message(), expected(message));
+    }
+    SetUp();
+    scene_["floors"][1]["tiles"][0]["rect"] =
+        json::array({-16777216.0, 16777216.0, 0.5, 1.0 / 256});
+    EXPECT_TRUE(parse().ok()) << "the limits themselves are allowed";
+}
+
+TEST_F(SceneParseTest, LightsPerFloorAreLimited) {
+    json lights = json::array();
+    for (int i = 0; i < 4097; ++i) lights.push_back({{"pos", {i, 0}}, {"radius", 5}});
+    scene_["floors"][0]["lights"] = lights;
+    EXPECT_EQ(error_message(),
+              expected("floors[0].lights: 4097 lights is over the limit of 4096 per floor"));
+    SetUp();
+    lights.erase(lights.size() - 1);
+    scene_["floors"][0]["lights"] = lights;
+    EXPECT_TRUE(parse().ok()) << "4096 lights are allowed";
+}
+
 TEST_F(SceneParseTest, OverflowingNumberIsMalformed) {
     test::write_text(file(), R"({"format": "acetate-scene/1", "canvas": {"width": 4, "height": 4},
         "floors": [{"name": "a", "tiles": [{"image": "roof.png", "rect": [1e999, 0, 1, 1]}]}]})");
@@ -369,6 +416,103 @@ TEST_F(SceneParseTest, MessagesUseTheFileNameAsGiven) {
                                            0),
               0u)
         << result.error().message;
+}
+
+// ---- hostile files --------------------------------------------------------------------------
+
+TEST_F(SceneParseTest, SceneOverTheSizeLimitIsRefusedBeforeParsing) {
+    // Sparse: one byte over the limit takes no disk and, refused by its size, no time.
+    test::write_text(file(), "");
+    ASSERT_EQ(::truncate(file().c_str(), off_t(kMaxSceneFileBytes + 1)), 0);
+    static_assert(kMaxSceneFileBytes == 16 << 20, "the message below states the limit");
+    const auto start = std::chrono::steady_clock::now();
+    auto result = parse_scene_file(file());
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ASSERT_FALSE(result.ok());
+    EXPECT_EQ(result.error().code, ErrorCode::InvalidInput);
+    EXPECT_EQ(result.error().message,
+              expected("16.0 MiB (16777217 bytes) is over the 16 MiB limit for a scene file"));
+    EXPECT_LT(seconds, 0.5) << "refused by its size, before reading";
+}
+
+TEST_F(SceneParseTest, FifoSceneIsRefusedWithoutBlocking) {
+    ASSERT_EQ(::mkfifo(file().c_str(), 0600), 0) << std::strerror(errno);
+    auto parsing = std::async(std::launch::async, [&] { return parse_scene_file(file()); });
+    if (parsing.wait_for(std::chrono::seconds(10)) != std::future_status::ready) {
+        ADD_FAILURE() << "parse_scene_file blocked on a FIFO";
+        // Releases the blocked reader: it sees a writer come and go, then end of file.
+        for (int i = 0; i < 1000; ++i) {
+            const int fd = ::open(file().c_str(), O_WRONLY | O_NONBLOCK);
+            if (fd >= 0) {
+                ::close(fd);
+                break;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+    }
+    auto result = parsing.get();
+    ASSERT_FALSE(result.ok());
+    EXPECT_EQ(result.error().code, ErrorCode::InvalidInput);
+    EXPECT_EQ(result.error().message, expected("not a regular file (a FIFO)"));
+}
+
+TEST_F(SceneParseTest, DirectorySceneIsRefused) {
+    fs::create_directories(file());
+    auto result = parse_scene_file(file());
+    ASSERT_FALSE(result.ok());
+    EXPECT_EQ(result.error().code, ErrorCode::InvalidInput);
+    EXPECT_EQ(result.error().message, expected("not a regular file (a directory)"));
+}
+
+// Makes `depth` nested folders named `component` inside `dir`, working from descriptors
+// (the full path is too long for the kernel to take), and writes `text` into `leaf` in the
+// innermost one. Returns the path of that file relative to `dir`.
+fs::path write_deep_file(const fs::path& dir, const std::string& component, int depth,
+                         const std::string& leaf, const std::string& text) {
+    fs::path relative;
+    int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    for (int i = 0; i < depth && fd >= 0; ++i) {
+        ::mkdirat(fd, component.c_str(), 0755);
+        const int inner = ::openat(fd, component.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        ::close(fd);
+        fd = inner;
+        relative /= component;
+    }
+    if (fd < 0) throw std::runtime_error("cannot make nested folders in " + dir.string());
+    const int out = ::openat(fd, leaf.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    ::close(fd);
+    if (out < 0 || ::write(out, text.data(), text.size()) != ssize_t(text.size()))
+        throw std::runtime_error("cannot write the nested file");
+    ::close(out);
+    return relative / leaf;
+}
+
+// The end of a long message: enough to see what it says, without pages of path.
+std::string tail_of(const std::string& message) {
+    return message.size() > 160 ? "..." + message.substr(message.size() - 160) : message;
+}
+
+TEST_F(SceneParseTest, ExistingPathLongerThanPathMaxIsNotFileNotFound) {
+    const std::string component(200, 'd');
+    const int depth = PATH_MAX / int(component.size()) + 2;
+    const fs::path deep = dir_ / write_deep_file(dir_, component, depth, "scene.json", "{}");
+    ASSERT_GT(deep.string().size(), size_t(PATH_MAX));
+    auto result = parse_scene_file(deep);
+    ASSERT_FALSE(result.ok());
+    EXPECT_NE(result.error().code, ErrorCode::FileNotFound);
+    EXPECT_TRUE(result.error().message == deep.string() + ": cannot open: File name too long")
+        << tail_of(result.error().message);
+
+    // The same for an image the scene names.
+    const fs::path image = write_deep_file(dir_, component, depth, "roof.png", "not decoded");
+    scene_["floors"][1]["tiles"][0]["image"] = image.string();
+    auto named = parse();
+    ASSERT_FALSE(named.ok());
+    EXPECT_NE(named.error().code, ErrorCode::FileNotFound);
+    EXPECT_TRUE(named.error().message == expected("floors[1].tiles[0].image: cannot check " +
+                                                  (dir_ / image).string() + ": File name too long"))
+        << tail_of(named.error().message);
 }
 
 }  // namespace

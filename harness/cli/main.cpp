@@ -16,6 +16,8 @@
 
 #include "case_runner.hpp"
 #include "core/atomic_file.hpp"
+#include "core/input_file.hpp"
+#include "core/strict_json.hpp"
 #include "registry.hpp"
 #include "registry_location.hpp"
 #include "validate.hpp"
@@ -179,13 +181,7 @@ int run_case_command(const fs::path& plugin_info, const fs::path& case_file, con
         return kChildSetupFailure;
     };
     auto read = [](const fs::path& file) -> Result<nlohmann::json> {
-        std::ifstream in(file);
-        try {
-            return nlohmann::json::parse(in);
-        } catch (const nlohmann::json::exception& e) {
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: {}", file.string(), e.what()));
-        }
+        return read_json_file(file, kMaxHarnessFileBytes, "a harness file");
     };
     auto info_json = read(plugin_info);
     if (!info_json) return fail(info_json.error().message);

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
+#include "cli/output_paths.hpp"
 #include "core/atomic_file.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "registry.hpp"
@@ -75,6 +77,52 @@ PluginLoader::Admission load_policy(std::shared_ptr<const Registry> registry,
     };
 }
 
+// The active floors a scene is rendered from, in order: --floors, --floors all, --floor, or the
+// scene's own active floor.
+std::vector<uint32_t> floors_to_render(const RenderCommand& command, const SceneDesc& scene) {
+    std::vector<uint32_t> floors = command.floors;
+    if (command.all_floors)
+        for (uint32_t f = 0; f < scene.floors.size(); ++f) floors.push_back(f);
+    if (floors.empty()) floors.push_back(command.floor.value_or(scene.active_floor));
+    return floors;
+}
+
+// Every file the run will write: one image per scene and floor, and the statistics.
+std::vector<RunFile> run_outputs(const RenderCommand& command,
+                                 const std::vector<SceneDesc>& scenes) {
+    std::vector<RunFile> out;
+    const bool several_scenes = scenes.size() > 1;
+    for (size_t s = 0; s < scenes.size(); ++s) {
+        const std::vector<uint32_t> floors = floors_to_render(command, scenes[s]);
+        for (uint32_t f : floors)
+            out.push_back({frame_output_path(scene_output_path(command.output, s, several_scenes),
+                                             f, floors.size() > 1),
+                           "-o"});
+    }
+    if (command.stats) out.push_back({*command.stats, "--stats"});
+    return out;
+}
+
+// Every file the run reads before it writes: the scenes, their images and masks, the registry.
+std::vector<RunFile> run_inputs(const RenderCommand& command,
+                                const std::vector<SceneDesc>& scenes) {
+    std::vector<RunFile> in;
+    for (const SceneDesc& scene : scenes) {
+        in.push_back({scene.file, "scene"});
+        for (size_t f = 0; f < scene.floors.size(); ++f)
+            for (size_t t = 0; t < scene.floors[f].tiles.size(); ++t) {
+                const TileDesc& tile = scene.floors[f].tiles[t];
+                const std::string where =
+                    fmt::format("{}: floors[{}].tiles[{}]", scene.file.string(), f, t);
+                in.push_back({tile.image, where + ".image"});
+                for (const auto& [kind, mask] : tile.masks)
+                    in.push_back({mask, fmt::format("{}.masks.{}", where, kind)});
+            }
+    }
+    in.push_back({registry_path(command.registry), "the registry"});
+    return in;
+}
+
 }  // namespace
 
 std::filesystem::path frame_output_path(const std::filesystem::path& output, uint32_t floor,
@@ -88,11 +136,14 @@ std::filesystem::path scene_output_path(const std::filesystem::path& output, siz
 }
 
 int run_render(const RenderCommand& command) {
-    std::string ext = command.output.extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    // Exactly ".exr" or ".png", as documented; ".PNG" is refused rather than guessed at.
+    const std::string ext = command.output.extension().string();
     if (ext != ".exr" && ext != ".png")
         return fail(
             fmt::format("-o {}: the output must end in .exr or .png", command.output.string()));
+    if (!std::isfinite(command.time))
+        return fail(
+            fmt::format("--time: expected a finite number of seconds, got {}", command.time));
     auto view = parse_view(command.view);
     if (!view) return fail(view.error());
     CompositorOptions options;
@@ -132,6 +183,10 @@ int run_render(const RenderCommand& command) {
         registry_name = fmt::format("registry {}{}", file.string(),
                                     std::filesystem::exists(file, ec) ? "" : " (no such file)");
     }
+    if (auto spared =
+            check_outputs_spare_inputs(run_outputs(command, scenes), run_inputs(command, scenes));
+        !spared)
+        return fail(spared.error());
 
     auto context = VulkanContext::create(ContextOptions::from_environment());
     if (!context) return fail(context.error());
@@ -175,10 +230,7 @@ int run_render(const RenderCommand& command) {
                          scene.file.string().c_str(),
                          (unsigned long long)load.tile_texel_violations);
 
-        std::vector<uint32_t> floors = command.floors;
-        if (command.all_floors)
-            for (uint32_t f = 0; f < scene.floors.size(); ++f) floors.push_back(f);
-        if (floors.empty()) floors.push_back(command.floor.value_or(scene.active_floor));
+        const std::vector<uint32_t> floors = floors_to_render(command, scene);
         const bool several_floors = floors.size() > 1;
         nlohmann::json frames = nlohmann::json::array();
         for (size_t i = 0; i < floors.size(); ++i) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 
 #include "render/effect_pipelines.hpp"
 #include "render/renderer.hpp"
@@ -88,12 +89,19 @@ Result<std::vector<float>> resolve_params(const EffectDescriptor& d, const Effec
             return make_error(ErrorCode::InvalidInput,
                               fmt::format("{}: {}.params.{}: expected a number, got {}", scene_file,
                                           ref.where, name, value.dump()));
-        const float number =
-            value.is_boolean() ? (value.get<bool>() ? 1.0f : 0.0f) : value.get<float>();
-        if (!std::isfinite(number))
+        // Read as double first: a value beyond the float range (-1e308) is out of range, not
+        // "not finite" as it would look after the conversion.
+        const double wide =
+            value.is_boolean() ? (value.get<bool>() ? 1.0 : 0.0) : value.get<double>();
+        if (!std::isfinite(wide))
             return make_error(
                 ErrorCode::InvalidInput,
                 fmt::format("{}: {}.params.{}: not a finite number", scene_file, ref.where, name));
+        if (std::abs(wide) > double(std::numeric_limits<float>::max()))
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("{}: {}.params.{}: {} is out of range for a 32-bit float",
+                                          scene_file, ref.where, name, value.dump()));
+        const float number = float(wide);
         set(name, number);
     }
     return values;

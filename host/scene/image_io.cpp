@@ -1,5 +1,6 @@
 #include "scene/image_io.hpp"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/typedesc.h>
 #include <fmt/format.h>
@@ -128,36 +129,36 @@ void to_linear_premultiplied(DecodedPixels& decoded) {
     }
 }
 
-bool has_extension(const fs::path& file, std::string_view wanted) {
-    std::string ext = file.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == wanted;
-}
-
-// Writes all pixels of one image with OpenImageIO; `pixels` are in `pixel_type`.
-Result<void> write_with_oiio(const fs::path& temp, const fs::path& file,
-                             const OIIO::ImageSpec& spec, OIIO::TypeDesc pixel_type,
-                             const void* pixels) {
-    auto output = OIIO::ImageOutput::create(temp.string());
-    if (!output) return file_error(ErrorCode::ImageEncode, file, OIIO::geterror());
-    if (!output->open(temp.string(), spec) || !output->write_image(pixel_type, pixels) ||
+// Encodes one image in memory with OpenImageIO (`format` is "png" or "openexr"); `pixels` are
+// in `pixel_type`. Nothing touches the disk here: the bytes then go through the project's one
+// checked, atomic writer, so a full disk or a missing folder is an I/O error of the target, and
+// an encoder that would not report a short write cannot hide one.
+Result<std::vector<unsigned char>> encode_with_oiio(const fs::path& file, const char* format,
+                                                    const OIIO::ImageSpec& spec,
+                                                    OIIO::TypeDesc pixel_type, const void* pixels) {
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    auto output = OIIO::ImageOutput::create(format);
+    if (!output || !output->set_ioproxy(&memory))
+        return file_error(ErrorCode::ImageEncode, file,
+                          fmt::format("cannot encode {}: {}", format, OIIO::geterror()));
+    if (!output->open(file.string(), spec) || !output->write_image(pixel_type, pixels) ||
         !output->close())
         return file_error(ErrorCode::ImageEncode, file, output->geterror());
-    return {};
+    return bytes;
 }
 
-Result<void> write_exr(const fs::path& temp, const fs::path& file, const ImageRGBA& image) {
+Result<std::vector<unsigned char>> encode_exr(const fs::path& file, const ImageRGBA& image) {
     // Premultiplied linear, as the host holds it; only values beyond the half range are
     // clamped, so that the conversion does not create Inf.
     std::vector<float> pixels(image.pixels);
     for (float& value : pixels)
         if (std::isfinite(value)) value = std::clamp(value, -kHalfMax, kHalfMax);
     OIIO::ImageSpec spec(int(image.width), int(image.height), 4, OIIO::TypeDesc::HALF);
-    return write_with_oiio(temp, file, spec, OIIO::TypeDesc::FLOAT, pixels.data());
+    return encode_with_oiio(file, "openexr", spec, OIIO::TypeDesc::FLOAT, pixels.data());
 }
 
-Result<void> write_png(const fs::path& temp, const fs::path& file, const ImageRGBA& image) {
+Result<std::vector<unsigned char>> encode_png(const fs::path& file, const ImageRGBA& image) {
     std::vector<uint8_t> pixels(image.pixels.size());
     for (size_t i = 0; i < image.pixels.size(); i += 4)
         premultiplied_to_srgb8(&image.pixels[i], &pixels[i]);
@@ -165,7 +166,7 @@ Result<void> write_png(const fs::path& temp, const fs::path& file, const ImageRG
     // Without this OpenImageIO would un-premultiply the already straight values again.
     spec.attribute("oiio:UnassociatedAlpha", 1);
     spec.attribute("oiio:ColorSpace", "sRGB");
-    return write_with_oiio(temp, file, spec, OIIO::TypeDesc::UINT8, pixels.data());
+    return encode_with_oiio(file, "png", spec, OIIO::TypeDesc::UINT8, pixels.data());
 }
 
 }  // namespace
@@ -219,21 +220,18 @@ Result<void> save_image(const fs::path& file, const ImageRGBA& image) {
         return file_error(ErrorCode::InvalidInput, file,
                           fmt::format("cannot save a {}x{} image holding {} floats", image.width,
                                       image.height, image.pixels.size()));
-    const bool exr = has_extension(file, ".exr");
-    if (!exr && !has_extension(file, ".png"))
-        return file_error(ErrorCode::InvalidInput, file,
-                          fmt::format("unsupported output extension \"{}\" (supported: .exr, .png)",
-                                      file.extension().string()));
-
-    // The temporary keeps the extension because OpenImageIO picks the writer from it.
-    const fs::path temp = temp_sibling(file);
-    auto written = exr ? write_exr(temp, file, image) : write_png(temp, file, image);
-    if (!written) {
-        std::error_code ignored;
-        fs::remove(temp, ignored);
-        return written.error();
-    }
-    return replace_with_temp(temp, file);
+    // Exactly these two extensions, as the docs say: ".PNG" is refused, not guessed at.
+    const std::string extension = file.extension().string();
+    const bool exr = extension == ".exr";
+    if (!exr && extension != ".png")
+        return file_error(
+            ErrorCode::InvalidInput, file,
+            fmt::format("unsupported output extension \"{}\" (supported: .exr, .png)", extension));
+    auto encoded = exr ? encode_exr(file, image) : encode_png(file, image);
+    if (!encoded) return encoded.error();
+    const auto& bytes = encoded.value();
+    return write_file_atomically(
+        file, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace acetate

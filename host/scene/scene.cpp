@@ -4,13 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <initializer_list>
-#include <iterator>
 #include <limits>
-#include <optional>
-#include <set>
 #include <string_view>
+
+#include "core/input_file.hpp"
+#include "core/strict_json.hpp"
 
 namespace acetate {
 namespace {
@@ -21,6 +20,9 @@ using json = nlohmann::json;
 constexpr std::string_view kFormat = "acetate-scene/1";
 // Far above any real device limit; the renderer checks the device's own limit later.
 constexpr int64_t kMaxCanvasSide = 65536;
+// Effects consider a few dozen lights per floor (lighting's ultra preset: 64); 4096 leaves room
+// for any real scene while a hostile one is refused before 100,000 lights cost seconds of load.
+constexpr size_t kMaxLightsPerFloor = 4096;
 
 // Thrown by the checks below and caught in parse_scene_text. Validation then reads top to
 // bottom like the format it checks, and the first problem ends it. Never leaves this file.
@@ -45,64 +47,6 @@ std::string describe(const json& value) {
 std::string json_quoted(std::string_view text) {
     return json(std::string(text)).dump(-1, ' ', false, json::error_handler_t::replace);
 }
-
-// nlohmann_json keeps the last of two equal keys without a word; a scene with "rect" written
-// twice would silently lose one. This parser callback remembers the first duplicate and where.
-class DuplicateKeyFinder {
-  public:
-    bool on_event(json::parse_event_t event, const json& parsed) {
-        using E = json::parse_event_t;
-        switch (event) {
-            case E::object_start:
-                stack_.push_back({true});
-                break;
-            case E::array_start:
-                stack_.push_back({false});
-                break;
-            case E::key:
-                on_key(parsed.get<std::string>());
-                break;
-            case E::object_end:
-            case E::array_end:
-                stack_.pop_back();
-                element_done();
-                break;
-            case E::value:
-                element_done();
-                break;
-        }
-        return true;
-    }
-    const std::optional<std::pair<std::string, std::string>>& found() const { return found_; }
-
-  private:
-    struct Frame {
-        bool object;
-        std::set<std::string> keys{};
-        std::string key{};
-        size_t index = 0;
-    };
-
-    void on_key(const std::string& key) {
-        Frame& top = stack_.back();
-        top.key = key;
-        if (!top.keys.insert(key).second && !found_) found_.emplace(container_path(), key);
-    }
-    void element_done() {
-        if (!stack_.empty() && !stack_.back().object) ++stack_.back().index;
-    }
-    // The path of the innermost container: every enclosing frame's current child.
-    std::string container_path() const {
-        std::string path;
-        for (size_t i = 0; i + 1 < stack_.size(); ++i)
-            path = stack_[i].object ? field_path(path, stack_[i].key)
-                                    : item_path(path, stack_[i].index);
-        return path;
-    }
-
-    std::vector<Frame> stack_;
-    std::optional<std::pair<std::string, std::string>> found_;
-};
 
 class SceneReader {
   public:
@@ -230,6 +174,11 @@ fs::path SceneReader::existing_file(const json& value, const std::string& path) 
     const fs::path resolved = (base_dir_ / fs::path(text)).lexically_normal();
     std::error_code ec;
     const fs::file_status status = fs::status(resolved, ec);
+    // status() says "not found" for ENOENT and ENOTDIR; any other failure (a name longer than
+    // PATH_MAX, a folder it may not search) is not a missing file and is reported as itself.
+    if (status.type() == fs::file_type::none)
+        fail(path, fmt::format("cannot check {}: {}", resolved.string(), ec.message()),
+             ErrorCode::Io);
     if (!fs::exists(status))
         fail(path, "file not found: " + resolved.string(), ErrorCode::FileNotFound);
     if (!fs::is_regular_file(status)) fail(path, "not a regular file: " + resolved.string());
@@ -316,6 +265,9 @@ FloorDesc SceneReader::read_floor(const json& floor, const std::string& path) co
     if (const json* lights = optional(floor, "lights")) {
         const std::string lights_path = field_path(path, "lights");
         if (!lights->is_array()) fail(lights_path, "must be an array, got " + describe(*lights));
+        if (lights->size() > kMaxLightsPerFloor)
+            fail(lights_path, fmt::format("{} lights is over the limit of {} per floor",
+                                          lights->size(), kMaxLightsPerFloor));
         for (size_t i = 0; i < lights->size(); ++i)
             desc.lights.push_back(read_light((*lights)[i], item_path(lights_path, i)));
     }
@@ -336,12 +288,29 @@ TileDesc SceneReader::read_tile(const json& tile, const std::string& path) const
 SceneRect SceneReader::read_rect(const json& rect, const std::string& path) const {
     array_of(rect, path, 4, "4 numbers [x, y, width, height]");
     SceneRect r;
-    r.x = finite_number(rect[0], item_path(path, 0));
-    r.y = finite_number(rect[1], item_path(path, 1));
-    r.width = finite_number(rect[2], item_path(path, 2));
+    // The GPU takes 32-bit floats: beyond 2^24 they no longer hold whole pixels (1e39 would be
+    // Inf), and a size far below a pixel (1e-300) would be 0. Refuse both here, in one line.
+    constexpr double kMaxCoordinate = 16777216.0;  // 2^24
+    constexpr double kMinSize = 1.0 / 256.0;
+    const auto coordinate = [&](size_t i) {
+        const double v = finite_number(rect[i], item_path(path, i));
+        if (std::abs(v) > kMaxCoordinate)
+            fail(item_path(path, i),
+                 "must lie within +-16777216 scene pixels (2^24, where 32-bit floats still hold "
+                 "whole pixels), got " +
+                     describe(rect[i]));
+        return v;
+    };
+    r.x = coordinate(0);
+    r.y = coordinate(1);
+    r.width = coordinate(2);
     if (r.width <= 0) fail(item_path(path, 2), "width must be > 0, got " + describe(rect[2]));
-    r.height = finite_number(rect[3], item_path(path, 3));
+    if (r.width < kMinSize)
+        fail(item_path(path, 2), "width must be at least 1/256 pixel, got " + describe(rect[2]));
+    r.height = coordinate(3);
     if (r.height <= 0) fail(item_path(path, 3), "height must be > 0, got " + describe(rect[3]));
+    if (r.height < kMinSize)
+        fail(item_path(path, 3), "height must be at least 1/256 pixel, got " + describe(rect[3]));
     return r;
 }
 
@@ -419,39 +388,13 @@ uint32_t SceneReader::read_active_floor(const json* value, size_t floor_count) c
     return uint32_t(index);
 }
 
-// nlohmann's message starts with "[json.exception.parse_error.101] "; the id means nothing
-// to a scene author, the line and column do.
-std::string one_line_parse_message(const std::string& what) {
-    std::string message = what;
-    if (message.rfind("[json.exception.", 0) == 0) {
-        const size_t end = message.find("] ");
-        if (end != std::string::npos) message.erase(0, end + 2);
-    }
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    std::replace(message.begin(), message.end(), '\r', ' ');
-    return message;
-}
-
 }  // namespace
 
 Result<SceneDesc> parse_scene_text(const std::string& text, const fs::path& file) {
     const std::string label = file.string();
-    DuplicateKeyFinder duplicates;
-    json root;
-    try {
-        root = json::parse(text, [&](int, json::parse_event_t event, json& parsed) {
-            return duplicates.on_event(event, parsed);
-        });
-    } catch (const json::exception& e) {
-        // parse_error carries the line and column; out_of_range is a number too large to hold.
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: malformed JSON: {}", label,
-                                                               one_line_parse_message(e.what())));
-    }
-    if (const auto& dup = duplicates.found()) {
-        const std::string where = dup->first.empty() ? "" : dup->first + ": ";
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}duplicate field {}", label,
-                                                               where, json_quoted(dup->second)));
-    }
+    auto parsed = parse_json_strict(text, label);
+    if (!parsed) return parsed.error();
+    const json& root = parsed.value();
 
     std::error_code ec;
     fs::path absolute_file = fs::absolute(file, ec);
@@ -465,23 +408,17 @@ Result<SceneDesc> parse_scene_text(const std::string& text, const fs::path& file
 }
 
 Result<SceneDesc> parse_scene_file(const fs::path& file) {
-    const std::string label = file.string();
-    std::error_code ec;
-    const fs::file_status status = fs::status(file, ec);
-    if (!fs::exists(status)) {
+    auto text = read_input_file(file, kMaxSceneFileBytes, "a scene file");
+    if (!text) {
+        if (text.error().code != ErrorCode::FileNotFound) return text.error();
+        // The absolute path as well: a relative name is often resolved against a surprise.
+        std::error_code ec;
         const fs::path shown = fs::absolute(file, ec);
-        return make_error(ErrorCode::FileNotFound, fmt::format("{}: file not found: {}", label,
-                                                               (ec ? file : shown).string()));
+        return make_error(
+            ErrorCode::FileNotFound,
+            fmt::format("{}: file not found: {}", file.string(), (ec ? file : shown).string()));
     }
-    if (!fs::is_regular_file(status))
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: not a regular file", label));
-
-    std::ifstream in(file, std::ios::binary);
-    if (!in.is_open())
-        return make_error(ErrorCode::Io, fmt::format("{}: cannot open the file", label));
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) return make_error(ErrorCode::Io, fmt::format("{}: cannot read the file", label));
-    return parse_scene_text(text, file);
+    return parse_scene_text(text.value(), file);
 }
 
 }  // namespace acetate

@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "core/atomic_file.hpp"
+#include "core/input_file.hpp"
 
 namespace acetate {
 namespace {
@@ -79,33 +80,6 @@ Result<void> same_u32(std::string_view name, std::string_view prefix, std::strin
     if (stored == current) return {};
     return invalid(
         name, fmt::format("{}: {} {:#x}, this device has {:#x}", prefix, field, stored, current));
-}
-
-Result<std::vector<uint8_t>> read_whole_file(const fs::path& file, bool& missing) {
-    missing = false;
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
-    if (!f) {
-        if (errno == ENOENT) {
-            missing = true;
-            return std::vector<uint8_t>{};
-        }
-        return make_error(ErrorCode::Io,
-                          fmt::format("{}: cannot open: {}", file.string(), std::strerror(errno)));
-    }
-    // fopen succeeds on a directory on Linux; say so instead of a confusing read error.
-    struct stat st {};
-    if (::fstat(::fileno(f.get()), &st) != 0)
-        return make_error(ErrorCode::Io,
-                          fmt::format("{}: cannot stat: {}", file.string(), std::strerror(errno)));
-    if (!S_ISREG(st.st_mode))
-        return make_error(ErrorCode::Io, fmt::format("{}: not a regular file", file.string()));
-    std::vector<uint8_t> bytes(size_t(st.st_size));
-    const size_t got = std::fread(bytes.data(), 1, bytes.size(), f.get());
-    if (std::ferror(f.get()))
-        return make_error(ErrorCode::Io,
-                          fmt::format("{}: read failed: {}", file.string(), std::strerror(errno)));
-    bytes.resize(got);  // the file may have shrunk since fstat; the size check catches that
-    return bytes;
 }
 
 }  // namespace
@@ -207,10 +181,13 @@ Result<std::vector<uint8_t>> decode_pipeline_cache(std::span<const uint8_t> byte
 
 Result<std::vector<uint8_t>> read_pipeline_cache(const fs::path& file,
                                                  const PipelineCacheIdentity& id) {
-    bool missing = false;
-    auto bytes = read_whole_file(file, missing);
-    if (!bytes || missing) return bytes;
-    return decode_pipeline_cache(*bytes, id, file.string());
+    // The one input reader: a FIFO or a device here is refused, never waited on or read whole.
+    auto text = read_input_file_if_exists(file, kMaxPipelineCacheBytes, "a pipeline cache");
+    if (!text) return text.error();
+    if (!text.value()) return std::vector<uint8_t>{};
+    const std::string& data = **text;
+    return decode_pipeline_cache(
+        std::span(reinterpret_cast<const uint8_t*>(data.data()), data.size()), id, file.string());
 }
 
 Result<void> write_pipeline_cache(const fs::path& file, const PipelineCacheIdentity& id,
