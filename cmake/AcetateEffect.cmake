@@ -109,7 +109,13 @@ function(acetate_add_effect name)
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON
     POSITION_INDEPENDENT_CODE ON)
-  target_link_options(${name} PRIVATE "LINKER:--no-undefined" "LINKER:--exclude-libs,ALL")
+  # A sanitizer build leaves the sanitizer's symbols to the host executable that loads the
+  # plugin, so it cannot insist on --no-undefined.
+  if(ACETATE_SANITIZE)
+    target_link_options(${name} PRIVATE "LINKER:--exclude-libs,ALL")
+  else()
+    target_link_options(${name} PRIVATE "LINKER:--no-undefined" "LINKER:--exclude-libs,ALL")
+  endif()
 
   # Output directory: argument, then ACETATE_PLUGIN_OUTPUT_DIR, then CMake's default.
   set(out_dir "")

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Acetate needs, and any named as arguments, when missing.
+# Used by setup.sh (the build and the tests) and sanitize.sh (adds clang and its runtimes).
+set -euo pipefail
+# Build: compilers, CMake, the libraries. Tests: GoogleTest, Benchmark, clang-format (the
+# format check), git and debootstrap (scripts/fresh-machine.sh's own tests).
+packages=(
+  cmake g++ make pkg-config git
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-dev glslang-tools
+  libopenimageio-dev openimageio-tools libimath-dev
+  libboost-dev libboost-filesystem-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev libglm-dev libssl-dev
+  libgtest-dev libgmock-dev libbenchmark-dev clang-format debootstrap
+  "$@"
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "== Installing Debian packages: ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}"
+fi
