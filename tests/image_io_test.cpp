@@ -395,7 +395,7 @@ TEST(ImageIoTest, NonRegularTargetsAreNotReplaced) {
     fs::create_directory(dir / "folder.png");
     auto saved = save_image(dir / "folder.png", ImageRGBA(1, 1));
     ASSERT_FALSE(saved.ok());
-    EXPECT_NE(saved.error().message.find("it is a folder"), std::string::npos)
+    EXPECT_NE(saved.error().message.find("it is a directory"), std::string::npos)
         << saved.error().message;
     EXPECT_TRUE(fs::is_directory(dir / "folder.png"));
 }

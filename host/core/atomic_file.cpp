@@ -11,6 +11,8 @@
 #include <cstring>
 #include <regex>
 
+#include "core/file_descriptor.hpp"
+
 namespace acetate {
 namespace {
 
@@ -20,27 +22,6 @@ Error io_error(const fs::path& file, std::string_view what, int err) {
     return make_error(ErrorCode::Io,
                       fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
 }
-
-// Closes on every path out of the functions below.
-class FileDescriptor {
-  public:
-    explicit FileDescriptor(int fd) : fd_(fd) {}
-    ~FileDescriptor() {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    FileDescriptor(const FileDescriptor&) = delete;
-    FileDescriptor& operator=(const FileDescriptor&) = delete;
-    int get() const { return fd_; }
-    // close() can report a deferred write error (NFS, a full disk), so success checks it.
-    int close() {
-        const int result = ::close(fd_);
-        fd_ = -1;
-        return result;
-    }
-
-  private:
-    int fd_;
-};
 
 fs::path folder_of(const fs::path& file) {
     return file.has_parent_path() ? file.parent_path() : fs::path(".");
@@ -91,14 +72,8 @@ Result<void> check_target(const fs::path& file) {
         return io_error(file, "cannot inspect it", errno);
     }
     if (S_ISREG(st.st_mode) || S_ISLNK(st.st_mode)) return {};
-    const char* kind = S_ISDIR(st.st_mode)    ? "a folder"
-                       : S_ISFIFO(st.st_mode) ? "a FIFO"
-                       : S_ISCHR(st.st_mode)  ? "a character device"
-                       : S_ISBLK(st.st_mode)  ? "a block device"
-                       : S_ISSOCK(st.st_mode) ? "a socket"
-                                              : "not a regular file";
-    return make_error(ErrorCode::Io,
-                      fmt::format("{}: will not replace it: it is {}", file.string(), kind));
+    return make_error(ErrorCode::Io, fmt::format("{}: will not replace it: it is {}", file.string(),
+                                                 file_kind(st.st_mode)));
 }
 
 // The unnamed-temporary path; returns false (and nothing done) where O_TMPFILE is unsupported.

@@ -9,6 +9,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include "core/file_descriptor.hpp"
+
 namespace acetate {
 namespace {
 
@@ -19,42 +21,17 @@ Error io_error(const fs::path& file, std::string_view what, int err) {
                       fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
 }
 
-// What a file that is not a regular one is, for the refusal.
-const char* kind_of(mode_t mode) {
-    if (S_ISFIFO(mode)) return "a FIFO";
-    if (S_ISCHR(mode)) return "a character device";
-    if (S_ISBLK(mode)) return "a block device";
-    if (S_ISDIR(mode)) return "a directory";
-    if (S_ISSOCK(mode)) return "a socket";
-    return "not a kind of file the host reads";
-}
-
 Error not_regular(const fs::path& file, mode_t mode) {
     return make_error(ErrorCode::InvalidInput,
-                      fmt::format("{}: not a regular file ({})", file.string(), kind_of(mode)));
+                      fmt::format("{}: not a regular file ({})", file.string(), file_kind(mode)));
 }
-
-// Closes on every path out of read_checked.
-class Descriptor {
-  public:
-    explicit Descriptor(int fd) : fd_(fd) {}
-    ~Descriptor() {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    Descriptor(const Descriptor&) = delete;
-    Descriptor& operator=(const Descriptor&) = delete;
-    int get() const { return fd_; }
-
-  private:
-    int fd_;
-};
 
 // nullopt when the file does not exist; every other failure is an Error.
 Result<std::optional<std::string>> read_checked(const fs::path& file, std::uint64_t max_bytes,
                                                 std::string_view what) {
     // O_NONBLOCK: opening a FIFO for reading waits for a writer without it. O_NOCTTY: a
     // terminal named as input must not become this process's controlling terminal.
-    Descriptor fd(::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY));
+    FileDescriptor fd(::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY));
     if (fd.get() < 0) {
         const int err = errno;
         if (err == ENOENT) return std::optional<std::string>();
@@ -123,6 +100,15 @@ std::string describe_byte_count(std::uint64_t bytes) {
     }
     if (bytes % scale == 0) return fmt::format("{} {}", bytes / scale, kUnits[unit]);
     return fmt::format("{:.1f} {} ({} bytes)", double(bytes) / double(scale), kUnits[unit], bytes);
+}
+
+const char* file_kind(mode_t mode) {
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    if (S_ISDIR(mode)) return "a directory";
+    if (S_ISSOCK(mode)) return "a socket";
+    return "not a kind of file the host reads";
 }
 
 }  // namespace acetate
