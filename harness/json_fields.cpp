@@ -7,8 +7,33 @@
 
 namespace acetate::json_fields {
 
+namespace {
+
+// Keys and values come from the file being read and may hold any character; an error stays one
+// line by writing control characters as escapes ("\n", "\x01").
+std::string one_line(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '\n')
+            out += "\\n";
+        else if (c == '\r')
+            out += "\\r";
+        else if (c == '\t')
+            out += "\\t";
+        else if (u < 0x20 || u == 0x7f)
+            out += fmt::format("\\x{:02x}", u);
+        else
+            out += c;
+    }
+    return out;
+}
+
+}  // namespace
+
 void fail(const std::string& path, std::string what) {
-    throw JsonFieldError{path, std::move(what)};
+    throw JsonFieldError{one_line(path), one_line(what)};
 }
 
 std::string field(const std::string& path, std::string_view key) {

@@ -606,6 +606,20 @@ BoundedLoad load_in_bounded_child(const fs::path& file, unsigned seconds = 10) {
     return outcome;
 }
 
+// Found by fuzz_registry: a key holding a newline made a two-line error. Keys and values from
+// the file are written with escapes, so every refusal stays one line.
+TEST(Registry, ControlCharactersInTheFileStayEscapedInOneLine) {
+    auto key = Registry::parse(
+        R"({"f\nA\r\u0001": 1, "format": "acetate-registry/1", "plugins": []})", "reg.json");
+    ASSERT_FALSE(key.ok());
+    EXPECT_EQ(key.error().message,
+              "reg.json: f\\nA\\r\\x01: unknown field (this format has: format, plugins)");
+    auto value = Registry::parse(R"({"format": "a\nb", "plugins": []})", "reg.json");
+    ASSERT_FALSE(value.ok());
+    EXPECT_EQ(value.error().message.find('\n'), std::string::npos) << value.error().message;
+    EXPECT_NE(value.error().message.find("a\\nb"), std::string::npos) << value.error().message;
+}
+
 TEST_F(RegistryFiles, DuplicateKeysAreRefusedNamingTheField) {
     const std::string good = validated_registry().to_json();
     // A reviewer reading the entry sees binary B first; a parser keeping the last key would
