@@ -18,11 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Error io_error(const fs::path& file, std::string_view what, int err) {
-    return make_error(ErrorCode::Io,
-                      fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
-}
-
 fs::path folder_of(const fs::path& file) {
     return file.has_parent_path() ? file.parent_path() : fs::path(".");
 }

@@ -2,8 +2,15 @@
 // Small POSIX helpers shared by the one file reader (input_file.hpp) and the one file writer
 // (atomic_file.hpp).
 
+#include <fmt/format.h>
 #include <sys/types.h>
 #include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <string_view>
+
+#include "core/result.hpp"
 
 namespace acetate {
 
@@ -27,6 +34,12 @@ class FileDescriptor {
   private:
     int fd_;
 };
+
+// The one-line I/O error every file reader and writer gives: `<file>: <what failed>: <strerror>`.
+inline Error io_error(const std::filesystem::path& file, std::string_view what, int err) {
+    return make_error(ErrorCode::Io,
+                      fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
+}
 
 // What a file that is not a regular one is, for a one-line refusal: "a FIFO", "a directory"...
 const char* file_kind(mode_t mode);

@@ -16,11 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Error io_error(const fs::path& file, std::string_view what, int err) {
-    return make_error(ErrorCode::Io,
-                      fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
-}
-
 Error not_regular(const fs::path& file, mode_t mode) {
     return make_error(ErrorCode::InvalidInput,
                       fmt::format("{}: not a regular file ({})", file.string(), file_kind(mode)));
