@@ -1,0 +1,217 @@
+#include "case_session.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <fstream>
+
+#include "vulkan/pipeline_cache_file.hpp"
+
+namespace acetate::harness {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// The plugin under test may have any file name; scenes name plugins by id. A private folder
+// of `<id>.so` links makes the ordinary search find exactly the files under test.
+Result<Session> open_session(const CaseContext& c) {
+    const fs::path links = c.case_directory / "plugins";
+    std::error_code ec;
+    fs::create_directories(links, ec);
+    auto link = [&](const std::string& id, const std::string& file) -> Result<void> {
+        const fs::path target = links / (id + ".so");
+        fs::remove(target, ec);
+        fs::create_symlink(fs::absolute(file), target, ec);
+        if (ec)
+            return make_error(ErrorCode::Io, fmt::format("{}: cannot link the plugin: {}",
+                                                         target.string(), ec.message()));
+        return {};
+    };
+    ACETATE_TRY(link(c.plugin.id, c.plugin.file));
+    for (const CompanionPlugin& other : c.spec.companions) ACETATE_TRY(link(other.id, other.file));
+
+    Session session;
+    auto context = VulkanContext::create(ContextOptions::from_environment());
+    if (!context) return context.error();
+    session.context = std::move(context.value());
+    RendererOptions options;
+    options.plugin_directories = {links};
+    options.pipeline_cache_file = default_pipeline_cache_path();
+    auto renderer = Renderer::create(*session.context, options);
+    if (!renderer) return renderer.error();
+    session.renderer = std::move(renderer.value());
+    return session;
+}
+
+namespace {
+
+Result<std::unique_ptr<Compositor>> load(Session& s, const SceneDesc& scene) {
+    CompositorOptions options;
+    options.view = OutputView::FloorRgb;  // the active floor's whole target is drawn and kept
+    return Compositor::load(*s.renderer, scene, options);
+}
+
+}  // namespace
+
+// ---- scenes -----------------------------------------------------------------------------
+
+SceneEffect under_test(const CaseContext& c, json params) {
+    return {c.plugin.id, params.is_null() ? c.spec.params : params, c.spec.preset};
+}
+
+// Every floor carries the plugin (a floor effect) or the composite does (a global one).
+SceneLayout plugin_everywhere(const CaseContext& c, json params) {
+    const CaseSpec& s = c.spec;
+    SceneLayout layout;
+    layout.width = s.width;
+    layout.height = s.height;
+    layout.floor_effects.resize(s.floors);
+    for (uint32_t f = 0; f < s.floors; ++f) {
+        layout.floors.push_back(
+            make_floor_input(s.pattern, s.width, s.height, f, s.floors, s.seed, c.plugin.masks));
+        if (!c.plugin.is_global()) layout.floor_effects[f].push_back(under_test(c, params));
+    }
+    if (c.plugin.is_global()) layout.global_effects.push_back(under_test(c, params));
+    return layout;
+}
+
+// ---- captures ---------------------------------------------------------------------------
+
+Result<ImageRGBA> render_floor(Compositor& comp, uint32_t floor, float time) {
+    ACETATE_TRY(comp.render(floor, time));
+    return comp.read_active_floor();
+}
+
+// What the plugin produced with floor `floor` active: that floor's target (a floor effect),
+// or the composite it ran on (a global effect).
+Result<ImageRGBA> plugin_output(Compositor& comp, bool global, uint32_t floor, float time) {
+    if (!global) return render_floor(comp, floor, time);
+    ACETATE_TRY(comp.render(floor, time));
+    return comp.read_accumulation();
+}
+
+// A floor's target before and after its effects.
+Result<Capture> capture_floor(Compositor& comp, uint32_t floor, float time) {
+    Capture capture;
+    comp.set_effects_enabled(false);
+    auto input = render_floor(comp, floor, time);
+    comp.set_effects_enabled(true);
+    if (!input) return input.error();
+    auto output = render_floor(comp, floor, time);
+    if (!output) return output.error();
+    capture.input = std::move(input.value());
+    capture.output = std::move(output.value());
+    return capture;
+}
+
+// The composite of floors 0..top before and after the global effects.
+Result<Capture> capture_global(Compositor& comp, uint32_t top, float time) {
+    Capture capture;
+    comp.set_effects_enabled(true, false);
+    auto before = comp.render(top, time);
+    auto input = before ? comp.read_accumulation() : Result<ImageRGBA>(before.error());
+    comp.set_effects_enabled(true, true);
+    if (!input) return input.error();
+    ACETATE_TRY(comp.render(top, time));
+    auto output = comp.read_accumulation();
+    if (!output) return output.error();
+    capture.input = std::move(input.value());
+    capture.output = std::move(output.value());
+    return capture;
+}
+
+namespace {
+
+CheckResult load_failure(const Error& error) {
+    CheckResult check;
+    check.check = "load";
+    check.verdict = Verdict::Fail;
+    check.message = error.message;
+    return check;
+}
+
+}  // namespace
+
+// ---- results ----------------------------------------------------------------------------
+
+CaseWriter::CaseWriter(const CaseContext& c) : c_(c) {
+    result.id = c.spec.id;
+    result.description = c.spec.description;
+    result.seed = c.spec.seed;
+}
+
+std::string CaseWriter::picture(const std::string& name, const ImageRGBA& image) {
+    if (uint64_t(image.width) * image.height > 1024ull * 1024) return {};
+    const fs::path file = c_.case_directory / (name + ".png");
+    if (!save_image(file, image)) return {};
+    return fs::relative(file, c_.report_directory).string();
+}
+
+void CaseWriter::case_picture(const std::string& role, const ImageRGBA& image) {
+    if (auto path = picture(role, image); !path.empty()) result.images[role] = path;
+}
+void CaseWriter::add(CheckResult check, const std::map<int64_t, ImageRGBA>* heat_maps) {
+    if (heat_maps)
+        for (const auto& [floor, heat] : *heat_maps) {
+            const std::string role =
+                floor >= 0 ? fmt::format("heatmap.floor{}", floor) : "heatmap.composite";
+            if (auto path = picture(check.check + "." + role, heat); !path.empty())
+                check.images[role] = path;
+        }
+    result.checks.push_back(std::move(check));
+}
+void CaseWriter::add_all(std::vector<CheckResult> checks,
+                         const std::map<std::string, std::map<int64_t, ImageRGBA>>& heat) {
+    for (CheckResult& check : checks) {
+        auto it = heat.find(check.check);
+        add(std::move(check), it == heat.end() ? nullptr : &it->second);
+    }
+}
+CaseResult CaseWriter::finish() {
+    CheckResult validation;
+    validation.check = "vulkan-validation";
+    const uint64_t messages = VulkanContext::process_validation_message_count();
+    const bool enabled =
+        std::getenv("ACETATE_VALIDATION") && std::string(std::getenv("ACETATE_VALIDATION")) == "1";
+    if (!enabled) {
+        validation.verdict = Verdict::Skip;
+        validation.message = "validation layers were off (ACETATE_VALIDATION is not 1)";
+    } else if (messages) {
+        validation.verdict = Verdict::Fail;
+        validation.violations = messages;
+        validation.message =
+            fmt::format("{} validation message{} while the plugin ran (the log has them)", messages,
+                        messages == 1 ? "" : "s");
+    } else {
+        validation.message = "no validation message while the plugin ran";
+    }
+    result.checks.push_back(validation);
+    for (const CheckResult& check : result.checks)
+        result.verdict = std::max(result.verdict, check.verdict);
+    return result;
+}
+
+uint64_t resident_bytes() {
+    std::ifstream statm("/proc/self/statm");
+    uint64_t size = 0, resident = 0;
+    statm >> size >> resident;
+    return resident * uint64_t(sysconf(_SC_PAGESIZE));
+}
+
+// Writes the layout's scene and loads it. A scene the host refuses (the plugin's build()
+// failed, a shader did not compile) is the case's "load" failure: it is recorded and the
+// result is null, so the case stops there. Environment failures come back as errors.
+Result<std::unique_ptr<Compositor>> load_layout(const CaseContext& c, Session& s, CaseWriter& w,
+                                                const SceneLayout& layout,
+                                                const std::string& name) {
+    auto scene = write_scene(layout, c.case_directory, name);
+    if (!scene) return scene.error();
+    auto comp = load(s, scene.value());
+    if (!comp) {
+        w.add(load_failure(comp.error()));
+        return std::unique_ptr<Compositor>();
+    }
+    return comp;
+}
+
+}  // namespace acetate::harness
