@@ -41,6 +41,9 @@ Result<CaseResult> run_case(const CaseContext& c) {
         case CaseKind::Integration:
             ran = run_integration(c, *session, writer);
             break;
+        case CaseKind::Undefined:
+            ran = run_undefined(c, *session, writer);
+            break;
     }
     if (!ran) return ran.error();
     // Close Vulkan first: messages at teardown (objects left alive) count too.

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "vulkan/pipeline_cache_file.hpp"
@@ -45,9 +46,26 @@ Result<Session> open_session(const CaseContext& c) {
 
 namespace {
 
-Result<std::unique_ptr<Compositor>> load(Session& s, const SceneDesc& scene) {
+std::optional<std::array<float, 4>> poison_colour(Poison poison) {
+    switch (poison) {
+        case Poison::None:
+            return std::nullopt;
+        case Poison::NaN:
+            return std::array<float, 4>{NAN, NAN, NAN, NAN};
+        case Poison::Large:  // finite in RGBA16F, far from any colour a tile holds
+            return std::array<float, 4>{49152.0f, 40960.0f, 32768.0f, 0.75f};
+        case Poison::Plain:  // an ordinary colour: reading it looks plausible, but differs
+            return std::array<float, 4>{0.25f, 0.5f, 0.125f, 0.5f};
+    }
+    return std::nullopt;
+}
+
+Result<std::unique_ptr<Compositor>> load(const CaseContext& c, Session& s, const SceneDesc& scene,
+                                         const LoadOptions& how) {
     CompositorOptions options;
     options.view = OutputView::FloorRgb;  // the active floor's whole target is drawn and kept
+    options.poison = poison_colour(c.spec.poison);
+    options.checked_builtins = how.checked_builtins;
     return Compositor::load(*s.renderer, scene, options);
 }
 
@@ -59,17 +77,18 @@ SceneEffect under_test(const CaseContext& c, json params) {
     return {c.plugin.id, params.is_null() ? c.spec.params : params, c.spec.preset};
 }
 
-// Every floor carries the plugin (a floor effect) or the composite does (a global one).
-SceneLayout plugin_everywhere(const CaseContext& c, json params) {
+SceneLayout case_layout(const CaseContext& c, json params) {
     const CaseSpec& s = c.spec;
     SceneLayout layout;
     layout.width = s.width;
     layout.height = s.height;
     layout.floor_effects.resize(s.floors);
+    const InputChoice choice{s.pattern, s.lights, s.masks};
     for (uint32_t f = 0; f < s.floors; ++f) {
         layout.floors.push_back(
-            make_floor_input(s.pattern, s.width, s.height, f, s.floors, s.seed, c.plugin.masks));
-        if (!c.plugin.is_global()) layout.floor_effects[f].push_back(under_test(c, params));
+            make_floor_input(choice, s.width, s.height, f, s.floors, s.seed, c.plugin.masks));
+        if (!c.plugin.is_global() && (s.plugin_floor < 0 || uint32_t(s.plugin_floor) == f))
+            layout.floor_effects[f].push_back(under_test(c, params));
     }
     if (c.plugin.is_global()) layout.global_effects.push_back(under_test(c, params));
     return layout;
@@ -191,6 +210,40 @@ CaseResult CaseWriter::finish() {
     return result;
 }
 
+std::vector<uint32_t> plugin_floors(const CaseContext& c) {
+    std::vector<uint32_t> floors;
+    if (c.plugin.is_global()) return floors;
+    for (uint32_t f = 0; f < c.spec.floors; ++f)
+        if (c.spec.plugin_floor < 0 || uint32_t(c.spec.plugin_floor) == f) floors.push_back(f);
+    return floors;
+}
+
+Result<bool> render_history(const CaseContext& c, Session& s, CaseWriter& w) {
+    // Other canvases (odd and even, smaller and larger) and other floor counts than the case's,
+    // so that state sized or indexed by the first load shows.
+    for (uint32_t i = 0; i < c.spec.prior_loads; ++i) {
+        CaseContext other = c;
+        other.spec.width = i % 2 ? c.spec.width + 33 : std::max(1u, c.spec.width / 2 + 1);
+        other.spec.height = i % 2 ? c.spec.height / 2 + 1 : c.spec.height + 17;
+        other.spec.floors = i % 2 ? 1 : c.spec.floors + 1;
+        other.spec.plugin_floor = -1;
+        other.spec.seed = c.spec.seed + 1 + i;
+        auto comp = load_layout(other, s, w, case_layout(other), fmt::format("prior{}", i));
+        if (!comp) return comp.error();
+        if (!*comp) return false;
+        for (uint32_t f = 0; f < other.spec.floors; ++f)
+            ACETATE_TRY((**comp).render(f, c.spec.time + 0.5f * float(f + 1)));
+    }
+    return true;
+}
+
+Result<void> render_earlier_frames(Compositor& comp, const CaseContext& c) {
+    const uint32_t floors = c.spec.floors;
+    for (uint32_t i = 1; i < c.spec.frames; ++i)
+        ACETATE_TRY(comp.render(i % floors, c.spec.time - float(c.spec.frames - i) / 30.0f));
+    return {};
+}
+
 uint64_t resident_bytes() {
     std::ifstream statm("/proc/self/statm");
     uint64_t size = 0, resident = 0;
@@ -198,15 +251,17 @@ uint64_t resident_bytes() {
     return resident * uint64_t(sysconf(_SC_PAGESIZE));
 }
 
-// Writes the layout's scene and loads it. A scene the host refuses (the plugin's build()
-// failed, a shader did not compile) is the case's "load" failure: it is recorded and the
-// result is null, so the case stops there. Environment failures come back as errors.
 Result<std::unique_ptr<Compositor>> load_layout(const CaseContext& c, Session& s, CaseWriter& w,
-                                                const SceneLayout& layout,
-                                                const std::string& name) {
+                                                const SceneLayout& layout, const std::string& name,
+                                                const LoadOptions& how) {
     auto scene = write_scene(layout, c.case_directory, name);
     if (!scene) return scene.error();
-    auto comp = load(s, scene.value());
+    return load_scene(c, s, w, scene.value(), how);
+}
+
+Result<std::unique_ptr<Compositor>> load_scene(const CaseContext& c, Session& s, CaseWriter& w,
+                                               const SceneDesc& scene, const LoadOptions& how) {
+    auto comp = load(c, s, scene, how);
     if (!comp) {
         w.add(load_failure(comp.error()));
         return std::unique_ptr<Compositor>();

@@ -30,8 +30,11 @@ Result<Session> open_session(const CaseContext& c);
 
 // The plugin under test with the case's params and preset (or `params`, when given).
 SceneEffect under_test(const CaseContext& c, nlohmann::json params = nullptr);
-// Every floor carries the plugin (a floor effect) or the composite does (a global one).
-SceneLayout plugin_everywhere(const CaseContext& c, nlohmann::json params = nullptr);
+// The case's scene: its floors made of its inputs (pattern, lights, masks), the plugin on every
+// floor or only on `plugin_floor` (a floor effect), or on the composite (a global one).
+SceneLayout case_layout(const CaseContext& c, nlohmann::json params = nullptr);
+// The floors that carry the plugin (none for a global effect).
+std::vector<uint32_t> plugin_floors(const CaseContext& c);
 
 // ---- captures ---------------------------------------------------------------------------
 
@@ -73,10 +76,28 @@ class CaseWriter {
 // The resident set of this process, in bytes.
 uint64_t resident_bytes();
 
-// Writes the layout's scene and loads it. A scene the host refuses (the plugin's build()
-// failed, a shader did not compile) is the case's "load" failure: it is recorded and the
-// result is null, so the case stops there. Environment failures come back as errors.
+// How a scene is loaded besides the case's poison.
+struct LoadOptions {
+    bool checked_builtins = false;  // GLSL with checked min/max/clamp/smoothstep (Undefined)
+};
+
+// Writes the layout's scene and loads it, with the case's poison. A scene the host refuses
+// (the plugin's build() failed, a shader did not compile) is the case's "load" failure: it is
+// recorded and the result is null, so the case stops there. Environment failures come back as
+// errors.
 Result<std::unique_ptr<Compositor>> load_layout(const CaseContext& c, Session& s, CaseWriter& w,
-                                                const SceneLayout& layout, const std::string& name);
+                                                const SceneLayout& layout, const std::string& name,
+                                                const LoadOptions& how = {});
+// The same for a scene already written.
+Result<std::unique_ptr<Compositor>> load_scene(const CaseContext& c, Session& s, CaseWriter& w,
+                                               const SceneDesc& scene, const LoadOptions& how = {});
+
+// What the process does before the case's own load: `prior_loads` other scenes loaded and
+// rendered (other canvases and floor counts). False when a load failed (recorded as the
+// case's "load" failure).
+Result<bool> render_history(const CaseContext& c, Session& s, CaseWriter& w);
+// In the case's own load, before the frame that is checked: `frames - 1` frames at advancing
+// times up to the case's, each floor active in turn.
+Result<void> render_earlier_frames(Compositor& comp, const CaseContext& c);
 
 }  // namespace acetate::harness

@@ -4,6 +4,7 @@
 // on (CaseSpec), chosen by strictness and seeded so a failing case can be re-run exactly.
 
 #include <cstdint>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -42,12 +43,26 @@ enum class CaseKind {
     FloorIsolation,  // the composite with and without the effect, away from its floor
     Disconnected,    // every parameter at min and at max must change something
     Integration,     // with the other integrated plugins, against a CPU-built reference
+    Undefined,       // GLSL recompiled with checked min/max/clamp/smoothstep: hidden NaN
 };
 const char* to_string(CaseKind kind);
 
 // An input pattern the tiles are made of (synthetic_inputs.hpp).
-enum class Pattern { Standard, AlphaRamp, Hdr, Empty, Opaque };
+enum class Pattern { Standard, AlphaRamp, Hdr, Empty, Opaque, Subnormal };
 const char* to_string(Pattern pattern);
+// The lights every floor has (synthetic_inputs.hpp): three over the canvas, none, one, more
+// than any preset's cap, off the canvas, with a tiny radius, with a huge one.
+enum class LightSet { Standard, None, One, Many, OffCanvas, Tiny, Huge };
+const char* to_string(LightSet lights);
+// What the tiles' masks hold, for each kind the plugin reads: varying content, no mask at all
+// (the host gives a transparent texture), all 0, all 1, content on half the tile only.
+enum class MaskFill { Content, Absent, Empty, Full, Partial };
+const char* to_string(MaskFill masks);
+// What fills memory a plugin may read before writing it (intermediate targets, `result`): it
+// differs between processes, so reading it fails `finite` (NaN) or `determinism` (two finite
+// values), instead of happening to read zeros. docs/harness.md, "Poisoned memory".
+enum class Poison { None, NaN, Large, Plain };
+const char* to_string(Poison poison);
 
 // Another plugin an integration case runs beside the one under test.
 struct CompanionPlugin {
@@ -68,16 +83,34 @@ struct CaseSpec {
     float time = 0;
     uint32_t switches = 0;                    // StateIsolation: floor switches for the memory check
     std::vector<CompanionPlugin> companions;  // Integration
+
+    // The rest of the input model (docs/harness.md, "The input model").
+    LightSet lights = LightSet::Standard;
+    MaskFill masks = MaskFill::Content;
+    int32_t plugin_floor = -1;  // a floor effect on this floor only; -1: on every floor
+    uint32_t frames = 1;        // frames rendered in the load, the last one checked
+    uint32_t prior_loads = 0;   // other scenes loaded and rendered in the process first
+    // Contract: parameter sets rendered one after the other in this process, each in a load of
+    // its own (a parameter swept over its range); empty: `params` alone.
+    std::vector<nlohmann::json> sweep;
+    Poison poison = Poison::NaN;
+    // The input model's dimensions and this case's value of each, for the report.
+    std::map<std::string, std::string> inputs;
 };
 nlohmann::json to_json(const CaseSpec& spec);
 Result<CaseSpec> case_spec_from_json(const nlohmann::json& json, std::string_view name);
 
-// The cases of one run. Strictness 1..10 sets how many parameter seeds, how large the large
-// size and how many floor switches; `run_seed` makes every case's seed (and so its inputs and
-// random parameters) reproducible. `integration` adds the INTEGRATED stage's cases.
+// The cases of one run (case_plan.cpp): each dimension of the input model varied on its own,
+// then combinations from a Latin hypercube. Strictness 1..10 sets how many combinations, sweep
+// points, frames and floor switches, and how large the large size; `run_seed` makes every
+// case's seed (and so its inputs and drawn values) reproducible. `integration` adds the
+// INTEGRATED stage's cases.
 std::vector<CaseSpec> plan_cases(const PluginInfo& plugin, int strictness, uint64_t run_seed,
                                  bool alpha_stage, bool integration_stage,
                                  const std::vector<CompanionPlugin>& companions);
+
+// SplitMix64's mixing function: a well-spread 64-bit hash of `x`.
+uint64_t splitmix64(uint64_t x);
 
 // A case's seed from the run's seed and its id (splitmix64 of both), so adding a case does not
 // change the others' seeds.

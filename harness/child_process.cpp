@@ -122,4 +122,53 @@ std::string tail_of_file(const std::filesystem::path& file, size_t max_bytes) {
     return text;
 }
 
+// The last non-empty line of a child's log: its one-line error, when it wrote one.
+std::string last_line(const std::string& text) {
+    std::istringstream in(text);
+    std::string line, last;
+    while (std::getline(in, line))
+        if (!line.empty()) last = line;
+    return last;
+}
+
+// The last (up to) 3 non-empty lines of a child's log, each cut to 160 characters, joined with
+// " | ": what the plugin or the host printed just before the plugin took the child down, which
+// is often the cause. One line, so the case's message stays one line.
+std::string last_lines(const std::string& text) {
+    constexpr size_t kCount = 3, kWidth = 160;
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        const size_t first = line.find_first_not_of(" \t\r"), last = line.find_last_not_of(" \t\r");
+        if (first == std::string::npos) continue;
+        line = line.substr(first, last - first + 1);
+        if (line.size() > kWidth) line = line.substr(0, kWidth) + "...";
+        lines.push_back(std::move(line));
+    }
+    std::string out;
+    for (size_t i = lines.size() > kCount ? lines.size() - kCount : 0; i < lines.size(); ++i)
+        out += (out.empty() ? "" : " | ") + lines[i];
+    return out;
+}
+
+// `what`, then the log's last lines when the child printed any.
+std::string with_log(const std::string& what, const std::string& log) {
+    const std::string lines = last_lines(log);
+    return lines.empty() ? what : fmt::format("{}; last log lines: {}", what, lines);
+}
+
+// How the plugin ended a child it took down, `doing` something: "the plugin called exit(0)
+// during the case", "... exited with status 7 ...", "... crashed during the case (killed by
+// SIGSEGV)". exit(0) is named as such: a reader would otherwise take status 0 for success.
+std::string plugin_ended(const ChildOutcome& outcome, const std::string& doing) {
+    if (outcome.signal) {
+        const char* name = sigabbrev_np(outcome.signal);
+        return fmt::format(
+            "the plugin crashed {} (killed by {})", doing,
+            name ? fmt::format("SIG{}", name) : fmt::format("signal {}", outcome.signal));
+    }
+    if (outcome.exit_code == 0) return fmt::format("the plugin called exit(0) {}", doing);
+    return fmt::format("the plugin exited with status {} {}", outcome.exit_code, doing);
+}
+
 }  // namespace acetate::harness

@@ -34,4 +34,15 @@ void run_children(const std::vector<ChildJob>& jobs, unsigned parallel,
 // The last `max_bytes` of a text file (a child's log), "" if unreadable.
 std::string tail_of_file(const std::filesystem::path& file, size_t max_bytes);
 
+// The last non-empty line of a child's log: its one-line error, when it wrote one.
+std::string last_line(const std::string& text);
+// The last (up to) 3 non-empty lines, each cut to 160 characters, joined with " | ".
+std::string last_lines(const std::string& text);
+// `what`, then "; last log lines: ..." when the log has any.
+std::string with_log(const std::string& what, const std::string& log);
+// How the plugin ended a child it took down while `doing` something: "the plugin called
+// exit(0) during the case", "... exited with status 7 ...", "... crashed ... (killed by
+// SIGSEGV)".
+std::string plugin_ended(const ChildOutcome& outcome, const std::string& doing);
+
 }  // namespace acetate::harness

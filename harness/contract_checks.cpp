@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -136,6 +137,16 @@ void check_finite(const FloorImages& floor, CheckAccumulator& out) {
                               fmt::format("non-finite value {}", format_rgba(image.at(x, y))));
 }
 
+void check_non_negative(const FloorImages& floor, CheckAccumulator& out) {
+    const ImageRGBA& image = *floor.output;
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const float* p = image.at(x, y);
+            if (all_finite(p) && std::min({p[0], p[1], p[2], p[3]}) < 0.0f)
+                out.violation(floor, x, y, fmt::format("negative value {}", format_rgba(p)));
+        }
+}
+
 std::vector<CheckResult> check_contract(
     const std::vector<FloorImages>& floors, bool expanding,
     std::map<std::string, std::map<int64_t, ImageRGBA>>* heat_maps,
@@ -148,7 +159,9 @@ std::vector<CheckResult> check_contract(
                                                       "coverage-preserving)");
     CheckAccumulator leak("alpha-leak", "opaque input stayed opaque");
     CheckAccumulator finite("finite", "no NaN or infinity in any channel");
+    CheckAccumulator non_negative("non-negative", "no channel below 0");
     for (const FloorImages& floor : floors) {
+        check_non_negative(floor, non_negative);
         check_premultiplied(floor, premultiplied);
         check_coverage(floor, expanding, coverage);
         check_alpha_leak(floor, leak);
@@ -156,7 +169,7 @@ std::vector<CheckResult> check_contract(
     }
     for (const FloorImages& image : finite_only) check_finite(image, finite);
     std::vector<CheckResult> results;
-    for (CheckAccumulator* acc : {&premultiplied, &coverage, &leak, &finite}) {
+    for (CheckAccumulator* acc : {&premultiplied, &coverage, &leak, &finite, &non_negative}) {
         CheckResult r = acc->finish();
         if (heat_maps && !acc->heat_maps().empty()) (*heat_maps)[r.check] = acc->heat_maps();
         results.push_back(std::move(r));

@@ -50,8 +50,10 @@ void check_coverage(const FloorImages& floor, bool expanding, CheckAccumulator& 
 void check_alpha_leak(const FloorImages& floor, CheckAccumulator& out);
 // No NaN or infinity in any channel.
 void check_finite(const FloorImages& floor, CheckAccumulator& out);
+// No channel below 0 (rule 1: premultiplied colour and alpha are never negative; -0 is 0).
+void check_non_negative(const FloorImages& floor, CheckAccumulator& out);
 
-// The four checks above over `floors`, in that order, with their heat maps as images of
+// The five checks above over `floors`, in that order, with their heat maps as images of
 // `heat_maps` (check -> floor -> image). `finite_only` (a composite, say: no input to compare
 // with) is checked for NaN and infinity alone.
 std::vector<CheckResult> check_contract(

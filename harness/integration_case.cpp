@@ -1,11 +1,11 @@
 // The integration stack: the plugin with the other integrated plugins, against a CPU reference.
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cmath>
 #include <cstring>
+#include <string>
 
 #include "case_kinds.hpp"
+#include "composite_reference.hpp"
 
 namespace acetate::harness {
 
@@ -13,10 +13,33 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-constexpr double kHalfMax = 65504.0;
-// One rgba16f rounding: within one ULP, 2^-10 of the value (Vulkan allows rounding toward zero
-// as well as to nearest), or 2^-24 for subnormals (as in tests/composite_accuracy_test.cpp).
-constexpr double kHalfRelative = 0x1p-10, kHalfAbsolute = 0x1p-24;
+
+// Which floor's output the composite departs from the reference at first: floors 0..k
+// composited for k = 0, 1, ..., each against the model of the same floors (k + 1 blends, so
+// k + 1 roundings). Effects must be on for the floors and off for the composite.
+Result<std::string> first_departure(Compositor& comp, const std::vector<ReferenceFloor>& floors,
+                                    float time) {
+    for (uint32_t k = 0; k < floors.size(); ++k) {
+        ACETATE_TRY(comp.render(k, time));
+        auto prefix = comp.read_accumulation();
+        if (!prefix) return prefix.error();
+        const double fail = k + 1;
+        const ReferenceComparison cmp =
+            compare_to_reference(composite_reference(floors, k + 1), *prefix, fail / 2, fail);
+        if (cmp.worst <= fail) continue;
+        const std::string below = k == 0   ? "the transparent canvas"
+                                  : k == 1 ? "floor 0"
+                                           : fmt::format("floors 0..{}", k - 1);
+        return fmt::format(
+            "first departs after floor {} (floor {}'s output over {}) at ({}, {}): {:.3g} "
+            "roundings, fail above {}",
+            k, k, below, cmp.x, cmp.y, cmp.worst, fail);
+    }
+    return std::string(
+        "no prefix of the floors departs when composited floor by floor: the "
+        "composite differed only in the full render");
+}
+
 }  // namespace
 
 // The plugin with the other integrated plugins on four floors: each floor's output must not
@@ -109,88 +132,48 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
     }
     w.add(cross.finish());
 
-    // Reference: the floors' outputs composited on the CPU in double precision, gated as the
-    // host gates them (stencil where the tiles drew, or by alpha after an expanding effect).
+    // Reference: the floors' outputs composited on the CPU as an RGBA16F target holds them
+    // after each blend (composite_reference.hpp), gated as the host gates them.
     (**comp).set_effects_enabled(true, false);
     ACETATE_TRY((**comp).render(spec.floors - 1, spec.time));
     auto composite = (**comp).read_accumulation();
-    (**comp).set_effects_enabled(true, true);
-    if (!composite) return composite.error();
-    const size_t pixels = size_t(spec.width) * spec.height;
-    std::vector<double> exact(pixels * 4, 0.0), peak(pixels * 4, 0.0);
+    if (!composite) return composite.error();  // the case stops: no later frame needs effects
+    std::vector<ReferenceFloor> floors;
     for (uint32_t f = 0; f < spec.floors; ++f)
-        for (size_t i = 0; i < pixels; ++i) {
-            const float* in = &captures[f].input.pixels[i * 4];
-            const float* out = &captures[f].output.pixels[i * 4];
-            const bool drawn = expanding[f]
-                                   ? (out[0] != 0 || out[1] != 0 || out[2] != 0 || out[3] != 0)
-                                   : in[3] > 0.0f;
-            if (!drawn) continue;
-            for (int ch = 0; ch < 4; ++ch) {
-                double& v = exact[i * 4 + ch];
-                v = out[ch] + (1.0 - out[3]) * v;
-                peak[i * 4 + ch] = std::max(peak[i * 4 + ch], std::abs(v));
-            }
-        }
-    ImageRGBA reference(spec.width, spec.height);
-    for (size_t i = 0; i < exact.size(); ++i)
-        reference.pixels[i] = float(std::clamp(exact[i], -kHalfMax, kHalfMax));
+        floors.push_back({&captures[f].input, &captures[f].output, expanding[f]});
+    const std::vector<PixelReference> model = composite_reference(floors, spec.floors);
     // In the manner of idiff's -fail / -warn / -failpercent 0: each blend rounds once, and
     // "over" only scales earlier errors by (1 - a) <= 1, so a correct composite is within
     // `floors` roundings of the running peak (fail above, at any pixel); warn above half that.
-    // Where the exact value exceeds 65504 the target may hold 65504 or infinity.
+    // Saturation keeps the bound (clamping never widens an error), and the overflow model is
+    // followed separately: composite_reference.cpp.
+    const double fail_steps = spec.floors;
+    const ReferenceComparison cmp =
+        compare_to_reference(model, *composite, fail_steps / 2, fail_steps);
+    const ImageRGBA reference = saturated_image(model, spec.width, spec.height);
     CheckResult ref;
     ref.check = "reference";
-    uint64_t warn_pixels = 0, fail_pixels = 0;
-    double worst_steps = 0;
-    int64_t worst_x = 0, worst_y = 0;
-    for (uint32_t y = 0; y < spec.height; ++y)
-        for (uint32_t x = 0; x < spec.width; ++x) {
-            const size_t i = size_t(y) * spec.width + x;
-            double pixel_steps = 0;
-            for (int ch = 0; ch < 4; ++ch) {
-                // Per channel: alpha's tolerance must not grow with an HDR colour's.
-                const double rounding = kHalfRelative * peak[i * 4 + ch] + kHalfAbsolute;
-                const double e = exact[i * 4 + ch];
-                const float g = composite->pixels[i * 4 + ch];
-                double steps = 0;
-                const bool saturated =
-                    std::abs(e) > kHalfMax &&
-                    (std::isinf(g) || std::abs(g) >= kHalfMax * (1 - spec.floors * kHalfRelative));
-                if (saturated && std::signbit(e) == std::signbit(g))
-                    steps = 0;
-                else if (std::isfinite(g))
-                    steps = std::abs(e - g) / rounding;
-                else
-                    steps = 1e30;  // NaN, or infinity where the exact value is finite
-                pixel_steps = std::max(pixel_steps, steps);
-            }
-            if (pixel_steps > 0.5 * spec.floors) ++warn_pixels;
-            if (pixel_steps > spec.floors) ++fail_pixels;
-            if (pixel_steps > worst_steps) {
-                worst_steps = pixel_steps;
-                worst_x = x;
-                worst_y = y;
-            }
-        }
-    const double fail_steps = spec.floors;
     ref.message = fmt::format(
         "composite against the CPU reference: worst {:.3g} roundings at ({}, {}); fail above {} "
         "(one per blend), warn above {}; {} pixels above warn, {} above fail",
-        worst_steps, worst_x, worst_y, fail_steps, fail_steps / 2, warn_pixels, fail_pixels);
-    if (worst_steps > fail_steps) {
+        cmp.worst, cmp.x, cmp.y, fail_steps, fail_steps / 2, cmp.warn_pixels, cmp.fail_pixels);
+    if (cmp.worst > fail_steps) {
         ref.verdict = Verdict::Fail;
-        ref.violations = fail_pixels;
+        ref.violations = cmp.fail_pixels;
         Violation v;
-        v.x = worst_x;
-        v.y = worst_y;
-        std::memcpy(v.input.data(), reference.at(uint32_t(worst_x), uint32_t(worst_y)), 16);
-        std::memcpy(v.output.data(), composite->at(uint32_t(worst_x), uint32_t(worst_y)), 16);
-        v.what = "reference then composite";
+        v.x = cmp.x;
+        v.y = cmp.y;
+        std::memcpy(v.input.data(), reference.at(cmp.x, cmp.y), 16);
+        std::memcpy(v.output.data(), composite->at(cmp.x, cmp.y), 16);
+        v.what = "reference (saturating model) then composite";
         ref.examples.push_back(v);
-    } else if (worst_steps > fail_steps / 2) {
+        auto first = first_departure(**comp, floors, spec.time);
+        if (!first) return first.error();
+        ref.message += "; " + *first;
+    } else if (cmp.worst > fail_steps / 2) {
         ref.verdict = Verdict::Warn;
     }
+    (**comp).set_effects_enabled(true, true);
     w.case_picture("composite", *composite);
     w.case_picture("reference", reference);
     w.add(ref);

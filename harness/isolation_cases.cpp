@@ -8,10 +8,18 @@ namespace acetate::harness {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// Two frames of each floor must match bit for bit; the digest lets the parent compare
+// processes: two fresh ones, and one that first loaded other scenes and rendered earlier frames
+// (determinism/after-history). The outputs are kept as EXR so the parent can show where they
+// differ.
 Result<void> run_determinism(const CaseContext& c, Session& s, CaseWriter& w) {
-    auto comp = load_layout(c, s, w, plugin_everywhere(c), "scene");
+    auto history = render_history(c, s, w);
+    if (!history) return history.error();
+    if (!*history) return {};
+    auto comp = load_layout(c, s, w, case_layout(c), "scene");
     if (!comp) return comp.error();
     if (!*comp) return {};
+    ACETATE_TRY(render_earlier_frames(**comp, c));
     const bool global = c.plugin.is_global();
     std::vector<ImageRGBA> outputs;
     CheckAccumulator frames("determinism",
@@ -42,9 +50,47 @@ Result<void> run_determinism(const CaseContext& c, Session& s, CaseWriter& w) {
     return {};
 }
 
+namespace {
+
+// Measured on lavapipe: lighting and bloom grow by 0 KiB over 22 loads (strictness 5)
+// after the warm-up. A build() leaking 64 KiB per instance (two per load here) exceeds the
+// allowance within 16 loads.
+constexpr int64_t kLoadAllowance = 2ll << 20;
+
+struct LoadGrowth {
+    bool loaded = true;  // false: a load failed (recorded as the case's "load" failure)
+    uint32_t loads = 0;
+    int64_t growth = 0;  // bytes of resident memory, after the warm-up loads
+};
+
+// Loads the scene again and again, rendering every floor of each load once.
+Result<LoadGrowth> measure_loads(const CaseContext& c, Session& s, CaseWriter& w,
+                                 const SceneLayout& layout) {
+    auto scene = write_scene(layout, c.case_directory, "reload");
+    if (!scene) return scene.error();
+    constexpr uint32_t kWarmUp = 3;
+    LoadGrowth out;
+    out.loads = 2 + c.spec.switches / 5;  // 22 at the default strictness
+    uint64_t resident_warm = 0;
+    for (uint32_t i = 0; i < kWarmUp + out.loads; ++i) {
+        if (i == kWarmUp) resident_warm = resident_bytes();
+        auto comp = load_scene(c, s, w, *scene);
+        if (!comp) return comp.error();
+        if (!*comp) {
+            out.loaded = false;
+            return out;
+        }
+        for (uint32_t f = 0; f < c.spec.floors; ++f) ACETATE_TRY((**comp).render(f, c.spec.time));
+    }
+    out.growth = int64_t(resident_bytes()) - int64_t(resident_warm);
+    return out;
+}
+
+}  // namespace
+
 // Floors 0, 1, 0 in one load; each floor alone; a second load; memory over many switches.
 Result<void> run_state_isolation(const CaseContext& c, Session& s, CaseWriter& w) {
-    const SceneLayout layout = plugin_everywhere(c);
+    const SceneLayout layout = case_layout(c);
     auto comp = load_layout(c, s, w, layout, "scene");
     if (!comp) return comp.error();
     if (!*comp) return {};
@@ -130,13 +176,33 @@ Result<void> run_state_isolation(const CaseContext& c, Session& s, CaseWriter& w
                 growth / 1024, c.spec.switches, kAllowance / 1024, images_before);
         }
     }
+    comp->reset();
+
+    // Memory across loads: build() runs once per instance and load, so a leak there shows only
+    // when the same scene is loaded again and again in one process.
+    if (memory.verdict == Verdict::Pass) {
+        auto loads = measure_loads(c, s, w, layout);
+        if (!loads) return loads.error();
+        if (!loads->loaded) return {};
+        if (loads->growth > kLoadAllowance) {
+            memory.verdict = Verdict::Fail;
+            memory.message = fmt::format(
+                "resident memory grew by {} KiB over {} loads of the same scene (allowance {} "
+                "KiB): does build() leak?",
+                loads->growth / 1024, loads->loads, kLoadAllowance / 1024);
+        } else {
+            memory.message +=
+                fmt::format("; {} KiB over {} loads of the scene (allowance {} KiB)",
+                            loads->growth / 1024, loads->loads, kLoadAllowance / 1024);
+        }
+    }
     w.add(memory);
     return {};
 }
 
 // The effect on floor 1 of 3 must change the composite only where floor 1 has coverage.
 Result<void> run_floor_isolation(const CaseContext& c, Session& s, CaseWriter& w) {
-    SceneLayout layout = plugin_everywhere(c);
+    SceneLayout layout = case_layout(c);
     for (uint32_t f = 0; f < layout.floor_effects.size(); ++f)
         if (f != 1) layout.floor_effects[f].clear();
     auto comp = load_layout(c, s, w, layout, "scene");

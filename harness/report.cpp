@@ -126,6 +126,18 @@ std::vector<CheckSummary> summarize_checks(const ValidationReport& report) {
     return out;
 }
 
+std::map<std::string, std::map<std::string, InputValueSummary>> summarize_inputs(
+    const ValidationReport& report) {
+    std::map<std::string, std::map<std::string, InputValueSummary>> out;
+    for (const CaseResult& c : report.cases)
+        for (const auto& [dimension, value] : c.inputs) {
+            InputValueSummary& s = out[dimension][value];
+            ++s.cases;
+            s.worst = std::max(s.worst, c.verdict);
+        }
+    return out;
+}
+
 std::map<std::string, uint64_t> count_verdicts(const ValidationReport& report) {
     std::map<std::string, uint64_t> counts;
     for (const CaseResult& result : report.cases) ++counts[to_string(result.verdict)];
@@ -229,7 +241,17 @@ json to_json(const CaseResult& result) {
                 {"seconds", number_to_json(result.seconds)},
                 {"reproduce", result.reproduce},
                 {"log", result.log},
-                {"output_digest", result.output_digest}};
+                {"output_digest", result.output_digest},
+                {"inputs", result.inputs}};
+}
+
+// Per dimension of the input model, each value tried: how many cases, and their worst verdict.
+json inputs_to_json(const ValidationReport& report) {
+    json out = json::object();
+    for (const auto& [dimension, values] : summarize_inputs(report))
+        for (const auto& [value, summary] : values)
+            out[dimension][value] = {{"cases", summary.cases}, {"worst", to_string(summary.worst)}};
+    return out;
 }
 
 json to_json(const ValidationReport& report) {
@@ -251,6 +273,7 @@ json to_json(const ValidationReport& report) {
                 {"stages", list_to_json(report.stages)},
                 {"cases", list_to_json(report.cases)},
                 {"history", list_to_json(report.history)},
+                {"input_model", inputs_to_json(report)},
                 {"error", report.error}};
 }
 
@@ -383,7 +406,7 @@ CaseResult read_case(const json& j) {
     const std::string path;  // the root
     expect_object(j, path, {"id"},
                   {"description", "seed", "verdict", "message", "checks", "images", "seconds",
-                   "reproduce", "log", "output_digest"});
+                   "reproduce", "log", "output_digest", "inputs"});
     CaseResult result;
     read_text(j, path, "id", result.id);
     read_text(j, path, "description", result.description);
@@ -396,6 +419,7 @@ CaseResult read_case(const json& j) {
     read_text(j, path, "reproduce", result.reproduce);
     read_text(j, path, "log", result.log);
     read_text(j, path, "output_digest", result.output_digest);
+    read_images(j, path, "inputs", result.inputs);  // the same shape: an object of strings
     return result;
 }
 
@@ -643,6 +667,7 @@ class HtmlPage {
         header();
         stages();
         summary();
+        inputs();
         cases();
         history();
         out_ += "</body>\n</html>\n";
@@ -723,6 +748,25 @@ class HtmlPage {
             put("<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                 escape(anchors_.summary_link.at(s.check)), escape(s.check), badge(s.verdict),
                 counts_text(s.cases, [](Verdict v) { return v; }), escape(s.first_failure));
+        put("</table>\n</section>\n");
+    }
+
+    // The input model: per dimension, every value some case tried, with how many cases and the
+    // worst verdict among them, so a reader sees what was explored and where it failed.
+    void inputs() {
+        const auto tried = summarize_inputs(report_);
+        if (tried.empty()) return;
+        put("<section id=\"inputs\">\n<h2>Inputs tried</h2>\n<table>\n<tr><th>Dimension</th>"
+            "<th>Values (cases)</th></tr>\n");
+        for (const auto& [dimension, values] : tried) {
+            std::string cells;
+            for (const auto& [value, summary] : values)
+                cells += fmt::format(
+                    "{}{} ({}{})", cells.empty() ? "" : " · ", escape(value), summary.cases,
+                    is_failing(summary.worst) ? fmt::format(", {}", badge(summary.worst))
+                                              : std::string());
+            put("<tr><td>{}</td><td>{}</td></tr>\n", escape(dimension), cells);
+        }
         put("</table>\n</section>\n");
     }
 

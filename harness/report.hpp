@@ -63,6 +63,8 @@ struct CaseResult {
     std::string reproduce;      // the command line that re-runs exactly this case
     std::string log;            // the child's stderr, last lines
     std::string output_digest;  // SHA-256 of the outputs it read back (determinism)
+    // The input model's dimensions and this case's value of each ("lights": "none", ...).
+    std::map<std::string, std::string> inputs;
 };
 
 // An automated stage the run tried, and what came of it.
@@ -105,6 +107,13 @@ struct CheckSummary {
     std::string first_failure;  // "params/max: ..." for the first failing case, if any
 };
 std::vector<CheckSummary> summarize_checks(const ValidationReport& report);
+// Per dimension of the input model, per value tried: the cases and their worst verdict.
+struct InputValueSummary {
+    uint64_t cases = 0;
+    Verdict worst = Verdict::Pass;
+};
+std::map<std::string, std::map<std::string, InputValueSummary>> summarize_inputs(
+    const ValidationReport& report);
 // Case verdict -> number of cases, with the names of registry evidence ("PASS", "FAIL", ...).
 std::map<std::string, uint64_t> count_verdicts(const ValidationReport& report);
 bool run_failed(const ValidationReport& report);

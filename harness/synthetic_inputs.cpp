@@ -69,6 +69,68 @@ void hdr(ImageRGBA& image) {
         }
 }
 
+// 8x8 blocks of tiny alphas (the smallest half-float subnormal 2^-24, 2^-23, 2^-20, the
+// smallest normal 2^-14, 2^-11) and some ordinary ones, each under straight colour from 0.5 to
+// 1000: premultiplied, colour far above alpha, as HDR light on a faint edge gives.
+void subnormal(ImageRGBA& image) {
+    constexpr float alphas[] = {0x1p-24f, 0x1p-23f, 0x1p-20f, 0x1p-14f, 0x1p-11f, 0.5f, 1.0f, 0.0f};
+    constexpr float colours[] = {0.5f, 1.0f, 1000.0f};
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const uint32_t block = x / 8 + 5 * (y / 8);
+            const float a = alphas[block % 8], c = colours[(block / 8) % 3];
+            put(image, x, y, {c, c * 0.5f, c * 0.25f}, a);
+        }
+}
+
+// The floor's lights, by kind: three over the canvas reaching most of it, none, one at the
+// centre, 100, three off the canvas reaching onto it, three with a radius of 10^-4 pixels,
+// three with a radius of 10^6.
+std::vector<LightDesc> make_lights(LightSet kind, uint32_t w, uint32_t h, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const double reach = std::max(w, h);
+    auto light = [&](double x, double y, double radius) {
+        LightDesc l;
+        l.pos = {float(x), float(y)};
+        l.radius = float(radius);
+        l.color = {float(0.5 + 0.5 * unit(rng)), float(0.5 + 0.5 * unit(rng)),
+                   float(0.5 + 0.5 * unit(rng))};
+        l.intensity = float(0.5 + 1.5 * unit(rng));
+        return l;
+    };
+    auto inside = [&](double radius) {
+        const double x = unit(rng) * w, y = unit(rng) * h;
+        return light(x, y, radius);
+    };
+    std::vector<LightDesc> lights;
+    switch (kind) {
+        case LightSet::Standard:
+            for (int i = 0; i < 3; ++i)
+                lights.push_back(inside(1.0 + reach * (0.3 + 0.4 * unit(rng))));
+            break;
+        case LightSet::None:
+            break;
+        case LightSet::One:
+            lights.push_back(light(w * 0.5, h * 0.5, 1.0 + reach * 0.5));
+            break;
+        case LightSet::Many:
+            for (int i = 0; i < 100; ++i) lights.push_back(inside(1.0 + reach * 0.2 * unit(rng)));
+            break;
+        case LightSet::OffCanvas:
+            lights.push_back(light(-0.5 * w, 0.5 * h, 1.0 + reach));
+            lights.push_back(light(1.5 * w, -0.5 * h, 1.0 + reach));
+            lights.push_back(light(0.5 * w, 1.0e4 + h, 2.0e4));
+            break;
+        case LightSet::Tiny:
+            for (int i = 0; i < 3; ++i) lights.push_back(inside(1.0e-4));
+            break;
+        case LightSet::Huge:
+            for (int i = 0; i < 3; ++i) lights.push_back(inside(1.0e6));
+            break;
+    }
+    return lights;
+}
+
 std::array<uint32_t, 4> floor_rect(uint32_t w, uint32_t h, uint32_t floor) {
     if (floor == 0) return {0, 0, w, h};
     auto part = [](uint32_t size, double f) { return uint32_t(std::floor(size * f)); };
@@ -89,6 +151,14 @@ void round_to_half(ImageRGBA& image) {
 FloorInput make_floor_input(Pattern pattern, uint32_t canvas_width, uint32_t canvas_height,
                             uint32_t floor, uint32_t floors, uint64_t seed,
                             const std::vector<std::string>& mask_kinds) {
+    return make_floor_input(InputChoice{pattern}, canvas_width, canvas_height, floor, floors, seed,
+                            mask_kinds);
+}
+
+FloorInput make_floor_input(const InputChoice& choice, uint32_t canvas_width,
+                            uint32_t canvas_height, uint32_t floor, uint32_t floors, uint64_t seed,
+                            const std::vector<std::string>& mask_kinds) {
+    const Pattern pattern = choice.pattern;
     std::mt19937_64 rng(seed + 7919 * floor);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     FloorInput in;
@@ -114,32 +184,29 @@ FloorInput make_floor_input(Pattern pattern, uint32_t canvas_width, uint32_t can
             break;
         case Pattern::Empty:
             break;  // all zero
+        case Pattern::Subnormal:
+            subnormal(in.image);
+            break;
     }
     round_to_half(in.image);
 
     // Masks vary across the tile so that a mask-driven parameter has something to act on.
-    for (const std::string& kind : mask_kinds) {
+    for (const std::string& kind :
+         choice.masks == MaskFill::Absent ? std::vector<std::string>{} : mask_kinds) {
         ImageRGBA mask(in.width, in.height);
         const double offset = unit(rng) * kTau;
         for (uint32_t y = 0; y < in.height; ++y)
             for (uint32_t x = 0; x < in.width; ++x) {
-                const float m = float(0.5 + 0.5 * std::sin(0.21 * x + 0.13 * y + offset));
+                float m = float(0.5 + 0.5 * std::sin(0.21 * x + 0.13 * y + offset));
+                if (choice.masks == MaskFill::Empty) m = 0.0f;
+                if (choice.masks == MaskFill::Full) m = 1.0f;
+                if (choice.masks == MaskFill::Partial && 2 * x >= in.width) m = 0.0f;
                 std::fill_n(mask.at(x, y), 4, m);
             }
         round_to_half(mask);
         in.masks[kind] = std::move(mask);
     }
-    // Three lights somewhere over the canvas, large enough to reach most of it.
-    const double reach = std::max(canvas_width, canvas_height);
-    for (int i = 0; i < 3; ++i) {
-        LightDesc light;
-        light.pos = {float(unit(rng) * canvas_width), float(unit(rng) * canvas_height)};
-        light.radius = float(1.0 + reach * (0.3 + 0.4 * unit(rng)));
-        light.color = {float(0.5 + 0.5 * unit(rng)), float(0.5 + 0.5 * unit(rng)),
-                       float(0.5 + 0.5 * unit(rng))};
-        light.intensity = float(0.5 + 1.5 * unit(rng));
-        in.lights.push_back(light);
-    }
+    in.lights = make_lights(choice.lights, canvas_width, canvas_height, rng);
     return in;
 }
 

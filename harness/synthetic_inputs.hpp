@@ -26,6 +26,17 @@ struct FloorInput {
 
 // Floor `floor` of `floors`: floor 0 covers the whole canvas, higher floors alternate between
 // two overlapping sub-rectangles, so each floor has pixels no other floor above it covers.
+// Its pixels follow `pattern`, its lights `lights` and its masks (one per kind in `mask_kinds`)
+// `masks`.
+struct InputChoice {
+    Pattern pattern = Pattern::Standard;
+    LightSet lights = LightSet::Standard;
+    MaskFill masks = MaskFill::Content;
+};
+FloorInput make_floor_input(const InputChoice& choice, uint32_t canvas_width,
+                            uint32_t canvas_height, uint32_t floor, uint32_t floors, uint64_t seed,
+                            const std::vector<std::string>& mask_kinds);
+// The same with three lights over the canvas and masks with content.
 FloorInput make_floor_input(Pattern pattern, uint32_t canvas_width, uint32_t canvas_height,
                             uint32_t floor, uint32_t floors, uint64_t seed,
                             const std::vector<std::string>& mask_kinds);

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "case_batch.hpp"
 #include "case_runner.hpp"
 #include "child_process.hpp"
 #include "contract_checks.hpp"
@@ -26,46 +27,12 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-std::string slug(const std::string& id) {
-    std::string out = id;
-    for (char& c : out)
-        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '_';
-    return out;
-}
-
 // A file a child wrote: a child runs plugin code, so it is read like any untrusted input.
 Result<json> read_json(const fs::path& file) {
     return read_json_file(file, kMaxHarnessFileBytes, "a harness file");
 }
 
-// The last non-empty line of a child's log: its one-line error, when it wrote one.
-std::string last_line(const std::string& text) {
-    std::istringstream in(text);
-    std::string line, last;
-    while (std::getline(in, line))
-        if (!line.empty()) last = line;
-    return last;
-}
-
 // ---- running the cases --------------------------------------------------------------------
-
-struct RunContext {
-    const ValidateOptions& options;
-    const PluginInfo& plugin;
-    fs::path plugin_info_file;
-    size_t done = 0, total = 0;
-};
-
-// A shell word: quoted when it holds anything but plain path characters.
-std::string shell_word(const std::string& text) {
-    const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("/._-+:=,", c);
-    });
-    if (plain) return text;
-    std::string out = "'";
-    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
 
 std::string reproduce_command(const ValidateOptions& o, const std::string& case_id) {
     std::string command = fmt::format(
@@ -78,120 +45,51 @@ std::string reproduce_command(const ValidateOptions& o, const std::string& case_
     return command;
 }
 
-// Runs `cases`, each in a child; prints a progress line as each finishes.
-std::vector<CaseResult> run_cases(RunContext& run, const std::vector<CaseSpec>& cases) {
-    const ValidateOptions& o = run.options;
-    std::vector<ChildJob> jobs;
-    std::vector<fs::path> directories;
-    for (const CaseSpec& spec : cases) {
-        const fs::path dir = o.report_directory / "cases" / slug(spec.id);
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-        fs::create_directories(dir, ec);
-        const fs::path spec_file = dir / "case.json";
-        (void)write_file_atomically(spec_file, to_json(spec).dump(2));
-        ChildJob job;
-        job.argv = {o.self.string(), "run-case",
-                    "--plugin-info", run.plugin_info_file.string(),
-                    "--case",        spec_file.string(),
-                    "--out",         dir.string(),
-                    "--report",      o.report_directory.string()};
-        job.log = dir / "log.txt";
-        job.timeout = std::chrono::milliseconds(int64_t(o.timeout_seconds * 1000));
-        jobs.push_back(job);
-        directories.push_back(dir);
-    }
-    std::vector<CaseResult> results(cases.size());
-    run_children(jobs, o.jobs, [&](size_t i, const ChildOutcome& outcome) {
-        CaseResult result;
-        const std::string log = tail_of_file(jobs[i].log, 4000);
-        if (outcome.started && !outcome.timed_out && outcome.exit_code == 0) {
-            auto parsed = read_json(case_result_file(directories[i]));
-            auto read = parsed ? case_result_from_json(*parsed, "result.json")
-                               : Result<CaseResult>(parsed.error());
-            if (read)
-                result = std::move(read.value());
-            else {
-                result.verdict = Verdict::Crash;
-                result.message = "the child wrote no readable result: " + read.error().message;
-            }
-        } else if (outcome.timed_out) {
-            result.verdict = Verdict::Timeout;
-            result.message = outcome.message;
-        } else if (outcome.signal || (outcome.started && outcome.exit_code != kChildSetupFailure)) {
-            // Killed by a signal, or exited on its own with a status the harness never uses
-            // (the plugin called exit()): either way the plugin took the process down.
-            result.verdict = Verdict::Crash;
-            result.message = outcome.message;
-        } else {
-            // The child ran but could not run the case (no device, an unwritable folder): the
-            // case failed, and its last log line says why.
-            result.verdict = Verdict::Fail;
-            result.message = fmt::format("{}: {}", outcome.message, last_line(log));
-            CheckResult run_check;
-            run_check.check = "run";
-            run_check.verdict = Verdict::Fail;
-            run_check.message = "the case could not run: " + result.message;
-            result.checks.push_back(run_check);
-        }
-        result.id = cases[i].id;
-        result.description = cases[i].description;
-        result.seed = cases[i].seed;
-        result.seconds = outcome.seconds;
-        result.reproduce = reproduce_command(o, cases[i].id);
-        result.log = log;
-        ++run.done;
-        std::printf("[%zu/%zu] %-28s %-7s %5.1f s%s%s\n", run.done, run.total, result.id.c_str(),
-                    to_string(result.verdict), result.seconds, result.message.empty() ? "" : "  ",
-                    result.message.c_str());
-        std::fflush(stdout);
-        results[i] = std::move(result);
-    });
-    return results;
-}
-
 CheckResult* find_check(CaseResult& c, const std::string& name) {
     for (CheckResult& check : c.checks)
         if (check.check == name) return &check;
     return nullptr;
 }
 
-// The determinism runs compare across processes: their digests must match. A plugin that is
-// not deterministic cannot be judged for state isolation (its images differ anyway), so that
-// check is skipped rather than failed twice for one fault.
+// The determinism runs compare across processes: every run's digest must match the first's
+// (two fresh processes, with different poisons; and one that rendered other scenes and frames
+// first). A plugin that is not deterministic cannot be judged for state isolation (its images
+// differ anyway), so that check is skipped rather than failed twice for one fault.
 void compare_across_processes(std::vector<CaseResult>& results, const fs::path& report_dir) {
-    CaseResult *run1 = nullptr, *run2 = nullptr;
+    CaseResult* first = nullptr;
+    for (CaseResult& r : results)
+        if (r.id == "determinism/run-1") first = &r;
     for (CaseResult& r : results) {
-        if (r.id == "determinism/run-1") run1 = &r;
-        if (r.id == "determinism/run-2") run2 = &r;
+        if (!first || &r == first || r.id.rfind("determinism/", 0) != 0) continue;
+        if (first->output_digest.empty() || r.output_digest.empty()) continue;
+        CheckResult* check = find_check(r, "determinism");
+        if (!check || first->output_digest == r.output_digest) continue;
+        const bool history = r.id == "determinism/after-history";
+        check->verdict = Verdict::Fail;
+        check->message = fmt::format(
+            "{} rendered the same case differently from a fresh process (digests {} and {}){}",
+            history ? "a process that had rendered other scenes and frames first"
+                    : "a second process",
+            first->output_digest.substr(0, 12), r.output_digest.substr(0, 12),
+            history ? "" : "; their poisons differed, so reading unwritten memory shows here");
+        // Where: the first floor whose saved outputs differ.
+        for (int f = 0; f < 8; ++f) {
+            const auto name = fmt::format("output.floor{}.exr", f);
+            auto a =
+                load_image(report_dir / "cases" / case_folder(first->id) / name, ImageRole::Colour);
+            auto b = load_image(report_dir / "cases" / case_folder(r.id) / name, ImageRole::Colour);
+            if (!a || !b) break;
+            const ImageDifference diff = compare_exact(*a, *b, f);
+            if (diff.pixels == 0) continue;
+            check->violations = diff.pixels;
+            check->examples = diff.examples;
+            check->message += fmt::format("; floor {}: {} pixels differ, first at ({}, {})", f,
+                                          diff.pixels, diff.examples[0].x, diff.examples[0].y);
+            break;
+        }
+        r.verdict = std::max(r.verdict, Verdict::Fail);
     }
     bool deterministic = true;
-    if (run1 && run2 && !run1->output_digest.empty() && !run2->output_digest.empty()) {
-        CheckResult* check = find_check(*run2, "determinism");
-        if (check && run1->output_digest != run2->output_digest) {
-            check->verdict = Verdict::Fail;
-            check->message =
-                fmt::format("two processes rendered the same case differently (digests {} and {})",
-                            run1->output_digest.substr(0, 12), run2->output_digest.substr(0, 12));
-            // Where: the first floor whose saved outputs differ.
-            for (int f = 0; f < 8; ++f) {
-                const auto name = fmt::format("output.floor{}.exr", f);
-                auto a =
-                    load_image(report_dir / "cases" / slug(run1->id) / name, ImageRole::Colour);
-                auto b =
-                    load_image(report_dir / "cases" / slug(run2->id) / name, ImageRole::Colour);
-                if (!a || !b) break;
-                const ImageDifference diff = compare_exact(*a, *b, f);
-                if (diff.pixels == 0) continue;
-                check->violations = diff.pixels;
-                check->examples = diff.examples;
-                check->message += fmt::format("; floor {}: {} pixels differ, first at ({}, {})", f,
-                                              diff.pixels, diff.examples[0].x, diff.examples[0].y);
-                break;
-            }
-            run2->verdict = std::max(run2->verdict, Verdict::Fail);
-        }
-    }
     for (const CaseResult& r : results)
         for (const CheckResult& c : r.checks)
             if (c.check == "determinism" && c.verdict == Verdict::Fail) deterministic = false;
@@ -337,6 +235,34 @@ ValidationStage current_stage(const fs::path& registry_file, const PluginInfo& p
     return registry->effective_stage(p.id, p.version, p.binary_sha256, p.source_digest);
 }
 
+// The describe child's own error: what follows kDescribeErrorMarker on the last log line that
+// starts with it; "" when no line does.
+std::string own_describe_error(const std::string& log) {
+    const std::string marker = kDescribeErrorMarker;
+    std::istringstream in(log);
+    std::string error;
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind(marker, 0) == 0) error = line.substr(marker.size());
+    return error;
+}
+
+// Why the describe child gave no plugin.json, in one line. The child runs plugin code (the
+// entry point, info()), which can end the process any way it likes: exit() with any status,
+// 0 and the harness's own included, _exit, abort, a signal. The one ending the harness controls
+// is its own error path, so that one is made unmistakable (kDescribeFailure and a line starting
+// with kDescribeErrorMarker: a plugin would have to forge both), and every other ending, a
+// status 0 without plugin.json included, is the plugin's doing and said so; never "no
+// plugin.json", which names the symptom and sends the author looking in the wrong place.
+std::string describe_failure(const ChildOutcome& outcome, const std::string& log) {
+    if (outcome.timed_out)
+        return fmt::format("the plugin hung while describing itself ({})", outcome.message);
+    if (!outcome.signal && outcome.exit_code == kDescribeFailure) {
+        const std::string own = own_describe_error(log);
+        if (!own.empty()) return own;
+    }
+    return with_log(plugin_ended(outcome, "while describing itself"), log);
+}
+
 }  // namespace
 
 Result<PluginInfo> describe_plugin(const fs::path& file) {
@@ -382,12 +308,10 @@ Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugi
     ChildOutcome outcome;
     run_children({job}, 1, [&](size_t, const ChildOutcome& o) { outcome = o; });
     if (!outcome.started) return make_error(ErrorCode::Io, outcome.message);
-    if (outcome.timed_out || outcome.signal || outcome.exit_code != 0) {
-        const std::string why =
-            outcome.exit_code > 0
-                ? last_line(tail_of_file(job.log, 2000))
-                : fmt::format("{} while loading it ({})",
-                              outcome.timed_out ? "it hung" : "it crashed", outcome.message);
+    const bool described =
+        !outcome.timed_out && !outcome.signal && outcome.exit_code == 0 && fs::exists(out, ec);
+    if (!described) {
+        const std::string why = describe_failure(outcome, tail_of_file(job.log, 4000));
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("{}: cannot describe the plugin: {}", plugin.string(), why));
     }
@@ -504,7 +428,13 @@ int run_validate(const ValidateOptions& o) {
         });
         return cases;
     };
-    RunContext run{o, plugin, plugin_info_file};
+    CaseBatch run;
+    run.self = o.self;
+    run.plugin_info_file = plugin_info_file;
+    run.report_directory = o.report_directory;
+    run.jobs = o.jobs;
+    run.timeout_seconds = o.timeout_seconds;
+    run.reproduce = [&o](const CaseSpec& spec) { return reproduce_command(o, spec.id); };
     bool recording_failed = false;
     // Which stages may be recorded: each needs the one before it, for this binary and source.
     auto try_stage = [&](ValidationStage stage, const std::vector<CaseSpec>& cases,
@@ -512,7 +442,7 @@ int run_validate(const ValidateOptions& o) {
         StageRun stage_run;
         stage_run.stage = to_string(stage);
         run.total += cases.size();
-        std::vector<CaseResult> results = run_cases(run, cases);
+        std::vector<CaseResult> results = run_case_batch(run, cases);
         compare_across_processes(results, o.report_directory);
         stage_run.passed = all_pass(results);
         const ValidationStage now = current_stage(o.registry, plugin);

@@ -19,6 +19,12 @@ inline constexpr const char* kHarnessVersion = "acetate-harness 0.1.0";
 // machine (an unreadable case file, no Vulkan device); any other non-zero status is the
 // plugin's doing and reported as CRASH.
 inline constexpr int kChildSetupFailure = 3;
+// How the describe child reports its own errors (the host refused the descriptor, plugin.json
+// could not be written): this exit status and a last line that starts with the marker. Both,
+// since the plugin's code runs in that child and may exit with any status; every other ending
+// is reported as the plugin's (describe_in_child).
+inline constexpr int kDescribeFailure = 4;
+inline constexpr const char* kDescribeErrorMarker = "acetate-harness describe: error: ";
 
 struct ValidateOptions {
     std::filesystem::path plugin;

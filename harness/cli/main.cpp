@@ -18,6 +18,7 @@
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
 #include "core/strict_json.hpp"
+#include "fuzz.hpp"
 #include "registry.hpp"
 #include "registry_location.hpp"
 #include "validate.hpp"
@@ -162,13 +163,25 @@ int run_status(const fs::path& registry_file, bool as_json) {
     return 0;
 }
 
-// Child: what the plugin declares, as JSON.
+// Child: what the plugin declares, as JSON. Its own errors end with kDescribeFailure and one
+// line starting with kDescribeErrorMarker, so the parent can tell them from the plugin ending
+// the process (describe_in_child). An exception here is the harness's: the SDK catches the
+// plugin's at the C boundary.
 int run_describe(const fs::path& plugin, const fs::path& out) {
     if (!tie_to_parent()) return kChildSetupFailure;
-    auto info = describe_plugin(plugin);
-    if (!info) return fail(info.error().message);
-    auto written = write_file_atomically(out, to_json(info.value()).dump(2));
-    if (!written) return fail(written.error().message);
+    auto fail = [](const std::string& message) {
+        std::fprintf(stderr, "%s%s\n", kDescribeErrorMarker, message.c_str());
+        std::fflush(stderr);
+        return kDescribeFailure;
+    };
+    try {
+        auto info = describe_plugin(plugin);
+        if (!info) return fail(info.error().message);
+        auto written = write_file_atomically(out, to_json(info.value()).dump(2));
+        if (!written) return fail(written.error().message);
+    } catch (const std::exception& e) {
+        return fail(e.what());
+    }
     return 0;
 }
 
@@ -244,6 +257,23 @@ int main(int argc, char** argv) {
                   "installation's share/acetate/validation/signoffs.json)");
     v->add_flag("--no-signoffs", no_signoffs, "Import no committed sign-offs");
 
+    FuzzOptions fuzz;
+    std::string fuzz_duration = "10m";
+    std::optional<fs::path> fuzz_report;
+    fuzz.jobs = validate.jobs;
+    CLI::App* f = app.add_subcommand(
+        "fuzz", "Draw cases from the whole input model until the time is up; shrink a failure");
+    f->add_option("plugin", fuzz.plugin, "The plugin's shared library")->required();
+    f->add_option("--duration", fuzz_duration, "How long to draw cases: 90s, 10m, 1h")
+        ->default_val("10m");
+    f->add_option("--jobs", fuzz.jobs, "Cases run at once")->check(CLI::Range(1, 256));
+    f->add_option("--seed", fuzz.seed, "Seed of the drawn cases")->default_val(1);
+    f->add_option("--timeout", fuzz.timeout_seconds, "Seconds a case may take")
+        ->check(CLI::Range(1.0, 3600.0))
+        ->default_val(120);
+    f->add_option("--report", fuzz_report, "Report folder (default ./harness-fuzz/<plugin>)");
+    f->add_option("--reproduce", fuzz.reproduce, "Run only this case file (a shrunk case)");
+
     fs::path review_plugin, promote_plugin;
     std::string reviewer, review_notes, promoter, promote_notes;
     CLI::App* r = app.add_subcommand("review", "Record a review sign-off (REVIEWED)");
@@ -278,6 +308,20 @@ int main(int argc, char** argv) {
     }
     const fs::path registry = registry_path(registry_flag);
     try {
+        if (f->parsed()) {
+            auto seconds = parse_duration(fuzz_duration);
+            if (!seconds) return fail(seconds.error().message);
+            fuzz.duration_seconds = *seconds;
+            std::error_code ec;
+            if (!fs::is_regular_file(fuzz.plugin, ec))
+                return fail(fmt::format("{}: no such plugin file", fuzz.plugin.string()));
+            fuzz.plugin = fs::absolute(fuzz.plugin);
+            fuzz.report_directory = fs::absolute(
+                fuzz_report ? *fuzz_report : fs::path("harness-fuzz") / fuzz.plugin.stem());
+            if (fuzz.reproduce) fuzz.reproduce = fs::absolute(*fuzz.reproduce);
+            fuzz.self = self_path();
+            return run_fuzz(fuzz);
+        }
         if (v->parsed()) {
             validate.up_to = stage_name == "alpha-tested" ? ValidationStage::AlphaTested
                                                           : ValidationStage::Integrated;

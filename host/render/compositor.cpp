@@ -34,6 +34,23 @@ VkRenderingAttachmentInfo color_attachment(VkImageView view, bool clear) {
     return a;
 }
 
+// Fills `area` of `image` with `colour` (a render pass that only clears: loadOp CLEAR limited to
+// the render area, which vkCmdClearColorImage cannot limit). Leaves it a colour attachment.
+void fill_area(VkCommandBuffer cmd, GpuImage& image, const PixelRect& area,
+               const std::array<float, 4>& colour) {
+    if (area.empty()) return;
+    image.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    VkRenderingAttachmentInfo attachment = color_attachment(image.view(), true);
+    std::memcpy(attachment.clearValue.color.float32, colour.data(), sizeof(float) * 4);
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = to_vk(area);
+    info.layerCount = 1;
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &attachment;
+    vkCmdBeginRendering(cmd, &info);
+    vkCmdEndRendering(cmd);
+}
+
 ResourceCounters delta(const ResourceCounters& after, const ResourceCounters& before) {
     return {after.images_loaded - before.images_loaded,
             after.targets_allocated - before.targets_allocated,
@@ -95,15 +112,16 @@ Result<void> Compositor::create_effects(const SceneDesc& scene) {
     floor_effects_.resize(scene.floors.size());
     for (size_t f = 0; f < scene.floors.size(); ++f) {
         for (const EffectRef& ref : scene.floors[f].effects) {
-            auto instance = create_effect_instance(renderer_, scene, ref, int64_t(f),
-                                                   options_.format, effect_targets_);
+            auto instance =
+                create_effect_instance(renderer_, scene, ref, int64_t(f), options_.format,
+                                       effect_targets_, options_.checked_builtins);
             if (!instance) return instance.error();
             floor_effects_[f].push_back(std::move(instance.value()));
         }
     }
     for (const EffectRef& ref : scene.global_effects) {
-        auto instance =
-            create_effect_instance(renderer_, scene, ref, -1, options_.format, effect_targets_);
+        auto instance = create_effect_instance(renderer_, scene, ref, -1, options_.format,
+                                               effect_targets_, options_.checked_builtins);
         if (!instance) return instance.error();
         global_effects_.push_back(std::move(instance.value()));
     }
@@ -359,6 +377,19 @@ Result<void> Compositor::warm_pipelines() {
                             resources_->blank_mask());
         for (auto& effect : global_effects_)
             warm_effect(*effect, *accumulation_pingpong_, nullptr, nullptr);
+        // Poisoned after the warm-up, which wrote a pixel of some targets: until an effect
+        // writes it, every texel reads as the poison. Once only: what one floor or frame
+        // wrote must stay for the next (a plugin reading it is then caught by the isolation
+        // checks, not by the poison).
+        if (options_.poison) {
+            VkClearColorValue poison;
+            std::memcpy(poison.float32, options_.poison->data(), sizeof(poison.float32));
+            for (GpuImage* target : effect_targets_.images()) {
+                target->transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+                vkCmdClearColorImage(cmd, target->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                     &poison, 1, &colour);
+            }
+        }
     });
 }
 
@@ -508,6 +539,9 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
             io.time = time;
             io.canvas_width = width_;
             io.canvas_height = height_;
+            // What "result" holds before this effect writes it: the poison where its passes
+            // shade, the zeros (or tiles) of today elsewhere.
+            if (options_.poison) fill_area(cmd, *next, io.result_scissor, *options_.poison);
             record_effect(cmd, renderer_, *effect, io, report);
             std::swap(current, next);
         }
@@ -565,6 +599,7 @@ void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, f
         io.time = time;
         io.canvas_width = width_;
         io.canvas_height = height_;
+        if (options_.poison) fill_area(cmd, *next, io.result_scissor, *options_.poison);
         record_effect(cmd, renderer_, *effect, io, report);
         std::swap(current, next);
     }
@@ -695,6 +730,18 @@ Result<ImageRGBA> Compositor::read_active_floor() {
                           "read_active_floor needs a view that reads the floor target "
                           "(floor-rgb, floor-alpha or violations)");
     return read_back_image(context_, *viewed_floor_);
+}
+
+EffectPassCounts Compositor::effect_pass_counts() const {
+    EffectPassCounts counts;
+    auto add = [&](const EffectInstance& effect) {
+        for (const EffectPassRuntime& pass : effect.passes)
+            ++(pass.from_glsl ? counts.glsl : counts.spirv);
+    };
+    for (const auto& floor : floor_effects_)
+        for (const auto& effect : floor) add(*effect);
+    for (const auto& effect : global_effects_) add(*effect);
+    return counts;
 }
 
 std::vector<TargetInfo> Compositor::targets_held() const {

@@ -52,6 +52,25 @@ struct CompositorOptions {
         bool inside_coverage = false;
     };
     std::optional<Injection> inject;
+    // A sentinel the harness fills memory with that an effect may read before writing it: every
+    // intermediate target is cleared to it once at load (not between floors or frames, so what
+    // one floor wrote stays for the next), and before each effect instance records, the area
+    // of "result" its passes shade holds it (outside that area "result" stays 0). NaN is fine.
+    // Unset: no extra clear.
+    std::optional<std::array<float, 4>> poison;
+    // GLSL passes are compiled with min, max, clamp and smoothstep that return NaN for a NaN
+    // operand, and smoothstep also for edge0 >= edge1 (checked_builtins_glsl()), so the
+    // harness's `finite` check sees results a driver may hide. Per scene rather than in
+    // RendererOptions: the pool keys shaders by their source, so checked and unchecked
+    // variants live side by side in one renderer, and the harness sets both options together.
+    bool checked_builtins = false;
+};
+
+// How the loaded scene's effect passes were given: only passes compiled from GLSL get
+// checked_builtins; SPIR-V passes run as they are.
+struct EffectPassCounts {
+    uint32_t glsl = 0;
+    uint32_t spirv = 0;
 };
 
 class Compositor {
@@ -94,6 +113,8 @@ class Compositor {
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
     const LoadStats& load_stats() const { return load_stats_; }
+    // Effect passes of every instance (floors and global), by how they were given.
+    EffectPassCounts effect_pass_counts() const;
     const FramePlan& last_plan() const { return last_plan_; }
     // Render targets held (accumulation, output, floor target and stencil when needed).
     std::vector<TargetInfo> targets_held() const;

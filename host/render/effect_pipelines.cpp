@@ -19,8 +19,78 @@ std::string input_variable(const std::string& input) {
     return name;
 }
 
+std::string checked_builtins_glsl() {
+    // The helpers are defined before the #defines, so inside them min, max, clamp and
+    // smoothstep are still the built-ins. The NaN test compares bits: isnan() survives
+    // lavapipe, but a compiler that may assume no NaN (Vulkan lets it, without
+    // SignedZeroInfNanPreserve) can fold isnan() to false, and never an integer comparison.
+    std::string out =
+        "float acetate_nan() { return uintBitsToFloat(0x7fc00000u); }\n"
+        "bool acetate_isnan(float x) {\n"
+        "    return (floatBitsToUint(x) & 0x7fffffffu) > 0x7f800000u;\n}\n";
+    for (int n = 2; n <= 4; ++n)
+        out += fmt::format(
+            "bvec{0} acetate_isnan(vec{0} x) {{\n"
+            "    return greaterThan(floatBitsToUint(x) & uvec{0}(0x7fffffffu), "
+            "uvec{0}(0x7f800000u));\n}}\n",
+            n);
+    const char* floats[] = {"float", "vec2", "vec3", "vec4"};
+    for (const char* t : floats) {
+        const bool scalar = std::strcmp(t, "float") == 0;
+        out += fmt::format(
+            "{0} acetate_nan_where({0} v, {0} operand) {{\n"
+            "    return mix(v, {0}(acetate_nan()), acetate_isnan(operand));\n}}\n"
+            "{0} acetate_checked_min({0} a, {0} b) {{\n"
+            "    return acetate_nan_where(acetate_nan_where(min(a, b), a), b);\n}}\n"
+            "{0} acetate_checked_max({0} a, {0} b) {{\n"
+            "    return acetate_nan_where(acetate_nan_where(max(a, b), a), b);\n}}\n"
+            "{0} acetate_checked_clamp({0} x, {0} lo, {0} hi) {{\n"
+            "    return acetate_nan_where(acetate_nan_where(acetate_nan_where(clamp(x, lo, hi), "
+            "x), lo), hi);\n}}\n"
+            "{0} acetate_checked_smoothstep({0} e0, {0} e1, {0} x) {{\n"
+            "    {0} r = acetate_nan_where(acetate_nan_where(acetate_nan_where("
+            "smoothstep(e0, e1, x), e0), e1), x);\n"
+            "    return mix(r, {0}(acetate_nan()), {1});\n}}\n",
+            t, scalar ? "e0 >= e1" : "greaterThanEqual(e0, e1)");
+        if (scalar) continue;
+        // The forms with a float operand: the same as that float in every component.
+        out += fmt::format(
+            "{0} acetate_checked_min({0} a, float b) {{ return acetate_checked_min(a, {0}(b)); "
+            "}}\n"
+            "{0} acetate_checked_max({0} a, float b) {{ return acetate_checked_max(a, {0}(b)); "
+            "}}\n"
+            "{0} acetate_checked_clamp({0} x, float lo, float hi) {{\n"
+            "    return acetate_checked_clamp(x, {0}(lo), {0}(hi));\n}}\n"
+            "{0} acetate_checked_smoothstep(float e0, float e1, {0} x) {{\n"
+            "    return acetate_checked_smoothstep({0}(e0), {0}(e1), x);\n}}\n",
+            t);
+    }
+    // Integer forms have no NaN: they forward, so integer min, max and clamp still compile.
+    const char* integers[][2] = {{"int", "int"},    {"ivec2", "int"}, {"ivec3", "int"},
+                                 {"ivec4", "int"},  {"uint", "uint"}, {"uvec2", "uint"},
+                                 {"uvec3", "uint"}, {"uvec4", "uint"}};
+    for (const auto& [t, scalar] : integers) {
+        std::vector<std::string> operands{t};
+        if (std::strcmp(t, scalar) != 0) operands.push_back(scalar);
+        for (const std::string& o : operands)
+            out += fmt::format(
+                "{0} acetate_checked_min({0} a, {1} b) {{ return min(a, b); }}\n"
+                "{0} acetate_checked_max({0} a, {1} b) {{ return max(a, b); }}\n"
+                "{0} acetate_checked_clamp({0} x, {1} lo, {1} hi) {{ return clamp(x, lo, hi); "
+                "}}\n",
+                t, o);
+    }
+    out +=
+        "#define min(a, b) acetate_checked_min(a, b)\n"
+        "#define max(a, b) acetate_checked_max(a, b)\n"
+        "#define clamp(x, lo, hi) acetate_checked_clamp(x, lo, hi)\n"
+        "#define smoothstep(e0, e1, x) acetate_checked_smoothstep(e0, e1, x)\n";
+    return out;
+}
+
 std::string effect_glsl_preamble(const EffectDescriptor& effect,
-                                 const std::vector<std::string>& inputs, uint32_t kind) {
+                                 const std::vector<std::string>& inputs, uint32_t kind,
+                                 bool checked_builtins) {
     std::string out =
         "#version 450\n"
         "layout(set = 0, binding = 0, std140) uniform AcetateFrame {\n"
@@ -43,7 +113,9 @@ std::string effect_glsl_preamble(const EffectDescriptor& effect,
         out +=
             "layout(location = 0) in vec2 acetate_uv;\n"
             "layout(location = 1) flat in int acetate_instance;\n";
-    out += "layout(location = 0) out vec4 out_color;\n#line 1\n";
+    out += "layout(location = 0) out vec4 out_color;\n";
+    if (checked_builtins) out += checked_builtins_glsl();
+    out += "#line 1\n";  // last: compiler messages give lines in the plugin's own text
     return out;
 }
 

@@ -61,9 +61,18 @@ struct EffectFrameUniforms {
 };
 
 // The GLSL the host puts before a pass's source: version, the AcetateFrame block with a
-// param_<name> macro per parameter, one sampler2D per input, floor_data, out_color.
+// param_<name> macro per parameter, one sampler2D per input, floor_data, out_color. With
+// `checked_builtins`, also checked_builtins_glsl(), so min, max, clamp and smoothstep in the
+// pass's own text are the checked ones.
 std::string effect_glsl_preamble(const EffectDescriptor& effect,
-                                 const std::vector<std::string>& inputs, uint32_t kind);
+                                 const std::vector<std::string>& inputs, uint32_t kind,
+                                 bool checked_builtins = false);
+
+// GLSL that replaces min, max, clamp and smoothstep in the text after it with versions that
+// return NaN where a floating-point operand is NaN, and smoothstep also where edge0 >= edge1
+// (component-wise), so a result the built-in leaves driver-dependent or undefined shows as NaN.
+// Integer forms forward to the built-ins unchanged; double forms are not provided.
+std::string checked_builtins_glsl();
 
 // The GLSL name of an input: '.' becomes '_' ("mask.water" -> "mask_water").
 std::string input_variable(const std::string& input);

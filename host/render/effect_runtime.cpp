@@ -107,11 +107,9 @@ Result<std::vector<float>> resolve_params(const EffectDescriptor& d, const Effec
     return values;
 }
 
-Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
-                                                               const SceneDesc& scene,
-                                                               const EffectRef& ref, int64_t floor,
-                                                               VkFormat format,
-                                                               EffectTargets& targets) {
+Result<std::unique_ptr<EffectInstance>> create_effect_instance(
+    Renderer& renderer, const SceneDesc& scene, const EffectRef& ref, int64_t floor,
+    VkFormat format, EffectTargets& targets, bool checked_builtins) {
     VulkanContext& context = renderer.context();
     const std::string file = scene.file.string();
     auto plugin = renderer.plugins().load(ref.plugin);
@@ -204,8 +202,12 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
                 pixels_covered(r[0], r[1], r[2], r[3], scene.width, scene.height).area();
         }
         std::shared_ptr<const std::vector<uint32_t>> spirv;
-        if (!pass.glsl.empty()) {
-            const std::string source = effect_glsl_preamble(d, pass.inputs, pass.kind) + pass.glsl;
+        runtime.from_glsl = !pass.glsl.empty();
+        if (runtime.from_glsl) {
+            // The pool keys SPIR-V by the whole source, preamble included, and pipelines by the
+            // SPIR-V, so checked and unchecked variants never share a shader or a pipeline.
+            const std::string source =
+                effect_glsl_preamble(d, pass.inputs, pass.kind, checked_builtins) + pass.glsl;
             auto compiled = renderer.pool().spirv(runtime.label, ShaderStage::Fragment, source);
             if (!compiled)
                 return make_error(

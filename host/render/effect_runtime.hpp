@@ -29,6 +29,7 @@ struct EffectPassRuntime {
     uint32_t instance_count = 0;  // instanced quads; 0 for a fullscreen pass
     uint32_t instance_data_offset = 0;
     uint64_t instanced_pixels = 0;  // sum of the quads' areas on the canvas
+    bool from_glsl = false;         // compiled from GLSL; false: given as SPIR-V (not checkable)
     GpuBuffer uniforms;             // EffectFrameUniforms + one vec4 per parameter
 };
 
@@ -66,12 +67,11 @@ Result<std::vector<float>> resolve_params(const EffectDescriptor& descriptor, co
                                           const std::string& scene_file);
 
 // Loads the plugin an EffectRef names, builds its instance for `floor` (-1: global), compiles
-// its passes and allocates what they write.
-Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
-                                                               const SceneDesc& scene,
-                                                               const EffectRef& ref, int64_t floor,
-                                                               VkFormat format,
-                                                               EffectTargets& targets);
+// its passes and allocates what they write. `checked_builtins` compiles GLSL passes with the
+// checked min, max, clamp and smoothstep (checked_builtins_glsl()).
+Result<std::unique_ptr<EffectInstance>> create_effect_instance(
+    Renderer& renderer, const SceneDesc& scene, const EffectRef& ref, int64_t floor,
+    VkFormat format, EffectTargets& targets, bool checked_builtins = false);
 
 // What an instance reads and writes in one frame.
 struct EffectIo {

@@ -1,0 +1,124 @@
+#include "case_batch.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include "case_runner.hpp"
+#include "child_process.hpp"
+#include "core/atomic_file.hpp"
+#include "core/input_file.hpp"
+#include "core/strict_json.hpp"
+#include "validate.hpp"
+
+namespace acetate::harness {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A file a child wrote: a child runs plugin code, so it is read like any untrusted input.
+Result<json> read_json(const fs::path& file) {
+    return read_json_file(file, kMaxHarnessFileBytes, "a harness file");
+}
+
+}  // namespace
+
+std::string case_folder(const std::string& id) {
+    std::string out = id;
+    for (char& c : out)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '_';
+    return out;
+}
+
+std::string shell_word(const std::string& text) {
+    const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("/._-+:=,", c);
+    });
+    if (plain) return text;
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpec>& cases) {
+    const CaseBatch& o = run;
+    std::vector<ChildJob> jobs;
+    std::vector<fs::path> directories;
+    for (const CaseSpec& spec : cases) {
+        const fs::path dir = o.report_directory / "cases" / case_folder(spec.id);
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+        fs::create_directories(dir, ec);
+        const fs::path spec_file = dir / "case.json";
+        (void)write_file_atomically(spec_file, to_json(spec).dump(2));
+        ChildJob job;
+        job.argv = {o.self.string(), "run-case",
+                    "--plugin-info", o.plugin_info_file.string(),
+                    "--case",        spec_file.string(),
+                    "--out",         dir.string(),
+                    "--report",      o.report_directory.string()};
+        job.log = dir / "log.txt";
+        job.timeout = std::chrono::milliseconds(int64_t(o.timeout_seconds * 1000));
+        jobs.push_back(job);
+        directories.push_back(dir);
+    }
+    std::vector<CaseResult> results(cases.size());
+    run_children(jobs, o.jobs, [&](size_t i, const ChildOutcome& outcome) {
+        CaseResult result;
+        const std::string log = tail_of_file(jobs[i].log, 4000);
+        // The child writes result.json last, just before it returns 0: a status 0 without it
+        // is the plugin's exit(0), handled with the other exits below.
+        std::error_code ec;
+        const bool wrote_result = fs::exists(case_result_file(directories[i]), ec);
+        if (outcome.started && !outcome.timed_out && outcome.exit_code == 0 && wrote_result) {
+            auto parsed = read_json(case_result_file(directories[i]));
+            auto read = parsed ? case_result_from_json(*parsed, "result.json")
+                               : Result<CaseResult>(parsed.error());
+            if (read)
+                result = std::move(read.value());
+            else {
+                result.verdict = Verdict::Crash;
+                result.message = "the child wrote no readable result: " + read.error().message;
+            }
+        } else if (outcome.timed_out) {
+            result.verdict = Verdict::Timeout;
+            result.message = outcome.message;
+        } else if (outcome.signal || (outcome.started && outcome.exit_code != kChildSetupFailure)) {
+            // Killed by a signal, or exited on its own with a status the harness never uses
+            // (the plugin called exit()): either way the plugin took the process down. The log's
+            // last lines usually say why (an assertion, the plugin's own error message).
+            result.verdict = Verdict::Crash;
+            result.message = with_log(plugin_ended(outcome, "during the case"), log);
+        } else {
+            // The child ran but could not run the case (no device, an unwritable folder): the
+            // case failed, and its last log line says why.
+            result.verdict = Verdict::Fail;
+            result.message = fmt::format("{}: {}", outcome.message, last_line(log));
+            CheckResult run_check;
+            run_check.check = "run";
+            run_check.verdict = Verdict::Fail;
+            run_check.message = "the case could not run: " + result.message;
+            result.checks.push_back(run_check);
+        }
+        result.id = cases[i].id;
+        result.description = cases[i].description;
+        result.seed = cases[i].seed;
+        result.inputs = cases[i].inputs;
+        result.seconds = outcome.seconds;
+        result.reproduce = o.reproduce ? o.reproduce(cases[i]) : std::string();
+        result.log = log;
+        ++run.done;
+        if (!o.quiet)
+            std::printf("[%zu/%zu] %-28s %-7s %5.1f s%s%s\n", run.done, run.total,
+                        result.id.c_str(), to_string(result.verdict), result.seconds,
+                        result.message.empty() ? "" : "  ", result.message.c_str());
+        std::fflush(stdout);
+        results[i] = std::move(result);
+    });
+    return results;
+}
+
+}  // namespace acetate::harness

@@ -1,0 +1,40 @@
+#pragma once
+// Runs cases in child processes, `jobs` at a time, each with its own folder under
+// `<report>/cases/` (case.json in, result.json, log.txt and pictures out), and turns each
+// child's end into a CaseResult: its own result, or CRASH / TIMEOUT / FAIL with the cause.
+// `validate` and `fuzz` both run their cases through it.
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "case_spec.hpp"
+#include "report.hpp"
+
+namespace acetate::harness {
+
+struct CaseBatch {
+    std::filesystem::path self;              // acetate-harness, started as `run-case`
+    std::filesystem::path plugin_info_file;  // what `describe` wrote
+    std::filesystem::path report_directory;  // cases/<folder>/ go under it
+    unsigned jobs = 2;
+    double timeout_seconds = 120;
+    // The command line that re-runs one case (CaseResult::reproduce); none when unset.
+    std::function<std::string(const CaseSpec&)> reproduce;
+    bool quiet = false;          // no progress line per case
+    size_t done = 0, total = 0;  // progress: "[done/total]"
+};
+
+// Runs `cases` and returns their results in the same order; prints a progress line as each
+// finishes (unless quiet).
+std::vector<CaseResult> run_case_batch(CaseBatch& batch, const std::vector<CaseSpec>& cases);
+
+// A case's folder name under cases/: its id with every character but letters, digits and '-'
+// turned into '_'.
+std::string case_folder(const std::string& id);
+
+// A shell word: quoted when it holds anything but plain path characters.
+std::string shell_word(const std::string& text);
+
+}  // namespace acetate::harness

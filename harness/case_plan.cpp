@@ -1,0 +1,272 @@
+// The planner: which cases a run has (docs/harness.md, "The cases"). Every dimension of the
+// input model (input_model.hpp) is varied on its own at least once, at every strictness; the
+// combinations, sweep points, frames and switches grow with strictness.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "case_spec.hpp"
+#include "input_model.hpp"
+
+namespace acetate::harness {
+namespace {
+
+using nlohmann::json;
+
+json all_params_at(const PluginInfo& plugin, bool at_max) {
+    json params = json::object();
+    for (const ParamInfo& p : plugin.params) params[p.name] = at_max ? p.max_value : p.min_value;
+    return params;
+}
+
+class Planner {
+  public:
+    Planner(const PluginInfo& plugin, uint64_t run_seed) : plugin_(plugin), run_seed_(run_seed) {}
+
+    CaseSpec contract(std::string id, std::string description, uint32_t w = 128, uint32_t h = 96,
+                      Pattern pattern = Pattern::Standard, uint32_t floors = 1) {
+        CaseSpec s;
+        s.id = std::move(id);
+        s.description = std::move(description);
+        s.width = w;
+        s.height = h;
+        s.pattern = pattern;
+        s.floors = floors;
+        return s;
+    }
+    // Seeds the case from its id (unless it was seeded already), poisons it, and tabulates
+    // its inputs for the report.
+    void add(CaseSpec s, bool seeded = false) {
+        if (!seeded) s.seed = case_seed(run_seed_, s.id);
+        // NaN in most processes (reading it fails `finite`); a large finite colour in every
+        // third, so a plugin that launders NaN still shows a difference somewhere.
+        if (s.poison == Poison::NaN && cases.size() % 3 == 2) s.poison = Poison::Large;
+        s.inputs = describe_inputs(s, plugin_);
+        cases.push_back(std::move(s));
+    }
+    std::vector<CaseSpec> cases;
+
+  private:
+    const PluginInfo& plugin_;
+    uint64_t run_seed_;
+};
+
+void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Planner& p) {
+    const bool floor_effect = !plugin.is_global();
+    // ---- canvas ----
+    p.add(p.contract("contract/standard", "one floor: opaque, partial and transparent areas", 256,
+                     160));
+    p.add(p.contract("contract/three-floors",
+                     "three overlapping floors, each with its own coverage and lights", 256, 160,
+                     Pattern::Standard, 3));
+    p.add(p.contract("sizes/1x1", "a 1x1 canvas", 1, 1));
+    p.add(p.contract("sizes/odd", "an odd size, 37x23", 37, 23));
+    p.add(p.contract("sizes/odd-even", "odd width, even height: 37x24", 37, 24));
+    p.add(p.contract("sizes/even-odd", "even width, odd height: 38x23", 38, 23));
+    p.add(p.contract("sizes/thin", "a one-pixel-high strip, 333x1", 333, 1));
+    if (strictness >= 7) p.add(p.contract("sizes/tall", "a one-pixel-wide strip, 1x517", 1, 517));
+    const uint32_t large_w = strictness <= 3 ? 1024 : strictness <= 7 ? 1920 : 4096;
+    const uint32_t large_h = strictness <= 3 ? 768 : strictness <= 7 ? 1080 : 2304;
+    p.add(p.contract("sizes/large", fmt::format("a large canvas, {}x{}", large_w, large_h), large_w,
+                     large_h));
+
+    // ---- pixels ----
+    p.add(p.contract("inputs/hdr", "HDR values up to the half-float maximum 65504", 128, 96,
+                     Pattern::Hdr));
+    p.add(p.contract("inputs/alpha-ramp", "alpha from 1 down to 1/65535 across the canvas", 256, 64,
+                     Pattern::AlphaRamp));
+    p.add(p.contract("inputs/subnormal",
+                     "alpha at the smallest half-float subnormal 2^-24 and other tiny values, "
+                     "under colour up to 1000 times alpha",
+                     96, 64, Pattern::Subnormal));
+    p.add(p.contract("inputs/empty", "a floor whose tile is fully transparent", 96, 64,
+                     Pattern::Empty));
+    p.add(
+        p.contract("inputs/opaque", "a floor that is opaque everywhere", 96, 64, Pattern::Opaque));
+
+    // ---- floors and the floor the plugin is on ----
+    if (floor_effect) {
+        CaseSpec s = p.contract("floors/one-of-two", "two floors, the plugin on floor 1 only", 128,
+                                96, Pattern::Standard, 2);
+        s.plugin_floor = 1;
+        p.add(s);
+        s = p.contract("floors/top-of-five", "five floors, the plugin on floor 4 only", 128, 96,
+                       Pattern::Standard, 5);
+        s.plugin_floor = 4;
+        p.add(s);
+    }
+    p.add(p.contract("floors/eight", "eight floors, the plugin on every one (or the composite)",
+                     128, 96, Pattern::Standard, 8));
+
+    // ---- lights (a global effect sees none) ----
+    if (floor_effect) {
+        const std::pair<LightSet, const char*> light_cases[] = {
+            {LightSet::None, "no lights"},
+            {LightSet::One, "one light at the centre"},
+            {LightSet::Many, "100 lights, more than any preset's cap"},
+            {LightSet::OffCanvas, "three lights off the canvas, reaching onto it"},
+            {LightSet::Tiny, "three lights with a radius of 10^-4 pixels"},
+            {LightSet::Huge, "three lights with a radius of 10^6 pixels"},
+        };
+        for (const auto& [lights, what] : light_cases) {
+            CaseSpec s = p.contract(std::string("lights/") + to_string(lights), what);
+            s.lights = lights;
+            p.add(s);
+        }
+    }
+
+    // ---- masks (only the kinds the plugin reads) ----
+    if (!plugin.masks.empty()) {
+        const std::pair<MaskFill, const char*> mask_cases[] = {
+            {MaskFill::Absent, "tiles carry no mask: the host's transparent texture"},
+            {MaskFill::Empty, "every mask 0"},
+            {MaskFill::Full, "every mask 1"},
+            {MaskFill::Partial, "masks on half of the tile, 0 on the other half"},
+        };
+        for (const auto& [masks, what] : mask_cases) {
+            CaseSpec s = p.contract(std::string("masks/") + to_string(masks), what);
+            s.masks = masks;
+            p.add(s);
+        }
+    }
+
+    // ---- parameters: ends, presets, each swept over its range ----
+    if (!plugin.params.empty()) {
+        CaseSpec s = p.contract("params/min", "every parameter at its minimum");
+        s.params = all_params_at(plugin, false);
+        s.inputs["params"] = "all at minimum";
+        p.add(s);
+        s = p.contract("params/max", "every parameter at its maximum");
+        s.params = all_params_at(plugin, true);
+        s.inputs["params"] = "all at maximum";
+        p.add(s);
+    }
+    for (const std::string& preset : plugin.presets) {
+        CaseSpec s = p.contract("params/preset-" + preset, "preset \"" + preset + "\"");
+        s.preset = preset;
+        p.add(s);
+    }
+    const int sweep_points = 3 + strictness;  // 8 at the default strictness
+    for (const ParamInfo& param : plugin.params) {
+        if (param.min_value == param.max_value) continue;
+        const std::vector<float> values = sweep_values(param, sweep_points);
+        CaseSpec s =
+            p.contract("params/sweep-" + param.name,
+                       fmt::format("{} at {} values from {:g} to {:g}, the others at default, "
+                                   "one load each",
+                                   param.name, values.size(), values.front(), values.back()));
+        for (float v : values) s.sweep.push_back(json{{param.name, v}});
+        s.inputs["params"] = fmt::format("sweep of {}", param.name);
+        p.add(s);
+    }
+
+    // ---- time, frames, loads ----
+    const std::pair<float, const char*> times[] = {
+        {0.37f, "fractional"}, {-2.5f, "negative"}, {1.0e5f, "large"}};
+    for (const auto& [time, name] : times) {
+        CaseSpec s = p.contract(std::string("time/") + name, fmt::format("time {:g} s", time));
+        s.time = time;
+        p.add(s);
+    }
+    CaseSpec frames =
+        p.contract("frames/many", "many frames in one load at advancing times; the last checked");
+    frames.frames = 8 + 2 * uint32_t(strictness);
+    frames.time = 1.0f;
+    p.add(frames);
+    CaseSpec loads = p.contract("loads/after-others",
+                                "two other scenes (other canvases and floors) loaded "
+                                "and rendered in the process first");
+    loads.prior_loads = 2;
+    p.add(loads);
+
+    // ---- combinations: a Latin hypercube over every dimension ----
+    const size_t points = size_t(2 * strictness);
+    const auto design =
+        latin_hypercube(points, scenario_dimensions(plugin), case_seed(run_seed, "combined"));
+    for (size_t i = 0; i < points; ++i) {
+        CaseSpec s = p.contract(fmt::format("combined/{}", i + 1),
+                                "a point of the Latin hypercube over every input dimension");
+        scenario_at(plugin, design[i], s);
+        s.inputs["params"] = "Latin hypercube";
+        p.add(s);
+    }
+
+    // ---- determinism, isolation, undefined results ----
+    // Two fresh processes, and a third that renders other scenes and frames first: all three
+    // must give the same bytes. Their poisons differ, so a read of unwritten memory differs.
+    const Poison poisons[] = {Poison::Large, Poison::Plain, Poison::NaN};
+    for (int run = 1; run <= 3; ++run) {
+        CaseSpec s = p.contract(run < 3 ? fmt::format("determinism/run-{}", run)
+                                        : std::string("determinism/after-history"),
+                                run < 3 ? "the same case in two processes, two frames each"
+                                        : "the same case after two other loads and six frames",
+                                192, 128, Pattern::Standard, 2);
+        s.kind = CaseKind::Determinism;
+        s.poison = poisons[run - 1];
+        if (run == 3) {
+            s.prior_loads = 2;
+            s.frames = 6;
+        }
+        s.seed = case_seed(run_seed, "determinism");  // every run: the same inputs
+        p.add(s, true);
+    }
+    CaseSpec state = p.contract("isolation/state",
+                                "floors 0, 1, 0; each floor alone; a second load; then many "
+                                "switches and loads for memory growth",
+                                160, 96, Pattern::Standard, 2);
+    state.kind = CaseKind::StateIsolation;
+    state.switches = uint32_t(20 * strictness);
+    p.add(state);
+    if (floor_effect) {
+        CaseSpec floor = p.contract("isolation/floors",
+                                    "the composite with and without the effect on floor 1 of 3",
+                                    192, 128, Pattern::Standard, 3);
+        floor.kind = CaseKind::FloorIsolation;
+        p.add(floor);
+    }
+    if (!plugin.params.empty()) {
+        CaseSpec s = p.contract("params/disconnected",
+                                "each parameter at its minimum and maximum must change the "
+                                "output (lights, masks and three times given)");
+        s.kind = CaseKind::Disconnected;
+        p.add(s);
+    }
+    for (Pattern pattern : {Pattern::Standard, Pattern::Hdr}) {
+        CaseSpec s = p.contract(std::string("undefined/") + to_string(pattern),
+                                "min, max, clamp and smoothstep checked for NaN operands and "
+                                "inverted edges",
+                                128, 96, pattern, 2);
+        s.kind = CaseKind::Undefined;
+        p.add(s);
+    }
+}
+
+}  // namespace
+
+std::vector<CaseSpec> plan_cases(const PluginInfo& plugin, int strictness, uint64_t run_seed,
+                                 bool alpha_stage, bool integration_stage,
+                                 const std::vector<CompanionPlugin>& companions) {
+    strictness = std::clamp(strictness, 1, 10);
+    Planner p(plugin, run_seed);
+    if (alpha_stage) plan_alpha(plugin, strictness, run_seed, p);
+    if (integration_stage) {
+        CaseSpec s = p.contract("integration/stack",
+                                "four floors with the other integrated plugins, against the "
+                                "composite rebuilt from each floor rendered alone",
+                                256, 160, Pattern::Standard, 4);
+        s.kind = CaseKind::Integration;
+        s.companions = companions;
+        p.add(s);
+        if (strictness >= 5) {
+            s = p.contract("integration/stack-hdr",
+                           "the same stack on HDR inputs near the half-float maximum", 128, 96,
+                           Pattern::Hdr, 4);
+            s.kind = CaseKind::Integration;
+            s.companions = companions;
+            p.add(s);
+        }
+    }
+    return p.cases;
+}
+
+}  // namespace acetate::harness
