@@ -26,6 +26,16 @@ const char* to_string(Verdict verdict);  // "PASS", "SKIP", "WARN", "FAIL", "TIM
 std::optional<Verdict> parse_verdict(std::string_view name);
 // FAIL, TIMEOUT and CRASH fail a run (non-zero exit, no evidence recorded).
 bool is_failing(Verdict verdict);
+// CRASH and TIMEOUT: the child process, not a check, failed.
+bool is_process_failure(Verdict verdict);
+// Every verdict, by severity.
+inline constexpr std::array<Verdict, 6> kVerdicts = {
+    Verdict::Pass, Verdict::Skip, Verdict::Warn, Verdict::Fail, Verdict::Timeout, Verdict::Crash};
+// The pseudo-check that collects cases whose child process crashed or ran out of time.
+inline constexpr const char* kProcessCheck = "process";
+// How report.json writes the values JSON has no number for.
+inline constexpr std::string_view kNaN = "NaN", kInfinity = "Infinity",
+                                  kMinusInfinity = "-Infinity";
 
 // One offending pixel: where, on which floor (-1: the composite / a global effect's output),
 // the values before and after the effect, and what is wrong with them.
