@@ -82,17 +82,30 @@ CheckResult CheckAccumulator::finish(Verdict failing) {
     return result_;
 }
 
+float colour_at_zero_alpha_tolerance(const ImageRGBA& input) {
+    float ratio = 1.0f;
+    for (uint32_t y = 0; y < input.height; ++y)
+        for (uint32_t x = 0; x < input.width; ++x) {
+            const float* p = input.at(x, y);
+            if (all_finite(p) && p[3] > 0.0f)
+                ratio = std::max(ratio, std::max({p[0], p[1], p[2]}) / p[3]);
+        }
+    return kZeroAlpha * ratio;
+}
+
 void check_premultiplied(const FloorImages& floor, CheckAccumulator& out) {
     const ImageRGBA& image = *floor.output;
+    const float tolerance = colour_at_zero_alpha_tolerance(*floor.input);
     for (uint32_t y = 0; y < image.height; ++y)
         for (uint32_t x = 0; x < image.width; ++x) {
             const float* p = image.at(x, y);
             if (!all_finite(p) || p[3] >= kZeroAlpha) continue;
-            if (std::abs(p[0]) > kZeroAlpha || std::abs(p[1]) > kZeroAlpha ||
-                std::abs(p[2]) > kZeroAlpha)
+            if (std::abs(p[0]) > tolerance || std::abs(p[1]) > tolerance ||
+                std::abs(p[2]) > tolerance)
                 out.violation(floor, x, y,
-                              fmt::format("a = {} but rgb = ({}, {}, {})", fmt_float(p[3]),
-                                          fmt_float(p[0]), fmt_float(p[1]), fmt_float(p[2])));
+                              fmt::format("a = {} but rgb = ({}, {}, {}) (tolerance {})",
+                                          fmt_float(p[3]), fmt_float(p[0]), fmt_float(p[1]),
+                                          fmt_float(p[2]), fmt_float(tolerance)));
         }
 }
 
@@ -152,7 +165,8 @@ std::vector<CheckResult> check_contract(
     std::map<std::string, std::map<int64_t, ImageRGBA>>* heat_maps,
     const std::vector<FloorImages>& finite_only) {
     CheckAccumulator premultiplied("premultiplied",
-                                   "rgb within 2^-24 of 0 wherever alpha is below 2^-24");
+                                   "rgb within 2^-24 of 0 (times the input's largest rgb/a, if "
+                                   "above 1) wherever alpha is below 2^-24");
     CheckAccumulator coverage("coverage", expanding ? "alpha never dropped and stayed within 1 "
                                                       "(declared coverage-expanding)"
                                                     : "alpha kept bit for bit (declared "

@@ -42,7 +42,11 @@ class CheckAccumulator {
 };
 inline constexpr size_t kMaxExamples = 8;
 
-// a < 2^-24 ⇒ |rgb| ≤ 2^-24.
+// a < 2^-24 ⇒ |rgb| ≤ 2^-24 × max(1, the input's largest rgb/a). Why the ratio: a correct
+// effect that scales or averages alpha (a blur, a glow) can take an alpha of 2^-24 below
+// 2^-25, where RGBA16F rounds it to 0, while the colour it premultiplies, up to rgb/a times
+// larger (1000 in inputs/subnormal), survives.
+float colour_at_zero_alpha_tolerance(const ImageRGBA& input);
 void check_premultiplied(const FloorImages& floor, CheckAccumulator& out);
 // Preserving: out.a == in.a bit for bit. Expanding: in.a ≤ out.a ≤ 1.
 void check_coverage(const FloorImages& floor, bool expanding, CheckAccumulator& out);

@@ -5,7 +5,8 @@
 // "apply" brightens the floor under every square in `trail`, its own or another floor's.
 // Rendering floors 0, 1, 0 gives a different floor 0 the second time. Alpha is kept, colour
 // only scaled by a positive factor, the output is finite and repeatable for a given order of
-// floors, and `gain` is connected. Caught by: the STATE-ISOLATION check only.
+// floors, and `gain` is connected. Caught by: the STATE-ISOLATION check, and DETERMINISM in
+// determinism/after-history (its earlier frames leave floor 1's stamps for floor 0).
 //
 // The host refuses an instanced pass as the first writer of an output, so "init" is a
 // fullscreen REPLACE pass into `trail` that discards every fragment: it satisfies the
