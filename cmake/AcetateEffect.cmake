@@ -115,6 +115,12 @@ function(acetate_add_effect name)
     target_link_options(${name} PRIVATE "LINKER:--exclude-libs,ALL")
   else()
     target_link_options(${name} PRIVATE "LINKER:--no-undefined" "LINKER:--exclude-libs,ALL")
+    # Hidden visibility cannot hide what libstdc++'s headers mark default (std::to_string
+    # instantiates __to_chars_10_impl, and a GNU-unique table that also keeps the library from
+    # unloading): a version script makes the entry point the only exported symbol.
+    set(exports "${CMAKE_CURRENT_BINARY_DIR}/${name}_acetate/exports.map")
+    file(WRITE "${exports}" "{ global: acetate_effect_entry_v1; local: *; };\n")
+    target_link_options(${name} PRIVATE "LINKER:--version-script=${exports}")
   endif()
 
   # Output directory: argument, then ACETATE_PLUGIN_OUTPUT_DIR, then CMake's default.

@@ -107,6 +107,8 @@ void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Pla
             {LightSet::OffCanvas, "three lights off the canvas, reaching onto it"},
             {LightSet::Tiny, "three lights with a radius of 10^-4 pixels"},
             {LightSet::Huge, "three lights with a radius of 10^6 pixels"},
+            {LightSet::Sun, "three lights at several heights and a sun at 40 degrees"},
+            {LightSet::GrazingSun, "one light and a sun on the horizon (elevation 0)"},
         };
         for (const auto& [lights, what] : light_cases) {
             CaseSpec s = p.contract(std::string("lights/") + to_string(lights), what);

@@ -74,7 +74,13 @@ Result<std::unique_ptr<Compositor>> load(const CaseContext& c, Session& s, const
 // ---- scenes -----------------------------------------------------------------------------
 
 SceneEffect under_test(const CaseContext& c, json params) {
-    return {c.plugin.id, params.is_null() ? c.spec.params : params, c.spec.preset};
+    if (params.is_null()) params = c.spec.params;
+    // The harness varies a vector parameter along its diagonal: every component alike, as the
+    // scene format's array.
+    for (const ParamInfo& p : c.plugin.params)
+        if (p.components > 1 && params.contains(p.name) && params[p.name].is_number())
+            params[p.name] = json(std::vector<float>(p.components, params[p.name].get<float>()));
+    return {c.plugin.id, params, c.spec.preset};
 }
 
 SceneLayout case_layout(const CaseContext& c, json params) {

@@ -16,8 +16,9 @@ constexpr const char* kKindNames[] = {"contract",        "determinism",  "state-
                                       "undefined"};
 constexpr const char* kPatternNames[] = {"standard", "alpha-ramp", "hdr",
                                          "empty",    "opaque",     "subnormal"};
-constexpr const char* kLightNames[] = {"three",      "none",        "one",        "many",
-                                       "off-canvas", "tiny-radius", "huge-radius"};
+constexpr const char* kLightNames[] = {"three",       "none",       "one",
+                                       "many",        "off-canvas", "tiny-radius",
+                                       "huge-radius", "sun",        "grazing-sun"};
 constexpr const char* kMaskNames[] = {"content", "absent", "empty", "full", "partial"};
 constexpr const char* kPoisonNames[] = {"none", "nan", "large", "plain"};
 
@@ -53,7 +54,8 @@ json to_json(const PluginInfo& info) {
                           {"type", p.type},
                           {"default", p.default_value},
                           {"min", p.min_value},
-                          {"max", p.max_value}});
+                          {"max", p.max_value},
+                          {"components", p.components}});
     return {{"file", info.file},
             {"id", info.id},
             {"version", info.version},
@@ -62,7 +64,9 @@ json to_json(const PluginInfo& info) {
             {"coverage", info.coverage},
             {"masks", info.masks},
             {"params", params},
+            {"hidden_params", info.hidden_params},
             {"presets", info.presets},
+            {"abi", info.abi},
             {"source_digest", info.source_digest},
             {"binary_sha256", info.binary_sha256}};
 }
@@ -80,7 +84,9 @@ Result<PluginInfo> plugin_info_from_json(const json& j, std::string_view name) {
         for (const json& p : j.at("params"))
             info.params.push_back({p.at("name").get<std::string>(), p.at("type").get<std::string>(),
                                    p.at("default").get<float>(), p.at("min").get<float>(),
-                                   p.at("max").get<float>()});
+                                   p.at("max").get<float>(), p.at("components").get<uint32_t>()});
+        info.hidden_params = j.at("hidden_params").get<std::vector<std::string>>();
+        info.abi = j.at("abi").get<std::string>();
         info.presets = j.at("presets").get<std::vector<std::string>>();
         info.source_digest = j.at("source_digest").get<std::string>();
         info.binary_sha256 = j.at("binary_sha256").get<std::string>();

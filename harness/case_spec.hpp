@@ -15,8 +15,9 @@ namespace acetate::harness {
 
 struct ParamInfo {
     std::string name;
-    std::string type;  // "float", "int", "bool"
+    std::string type;  // "float", "int", "bool", "vec2", "vec3", "color"
     float default_value = 0, min_value = 0, max_value = 0;
+    uint32_t components = 1;  // 2 or 3 for a vector: the harness sets every component alike
 };
 
 struct PluginInfo {
@@ -25,8 +26,10 @@ struct PluginInfo {
     std::string scope;     // "floor" / "global"
     std::string coverage;  // "preserving" / "expanding"
     std::vector<std::string> masks;
-    std::vector<ParamInfo> params;
+    std::vector<ParamInfo> params;           // what scenes may set (the harness varies these)
+    std::vector<std::string> hidden_params;  // set by presets only (ABI 1.1): not varied
     std::vector<std::string> presets;
+    std::string abi;  // "1.0", "1.1": what the plugin was built against
     std::string source_digest, binary_sha256;
 
     bool is_global() const { return scope == "global"; }
@@ -52,7 +55,7 @@ enum class Pattern { Standard, AlphaRamp, Hdr, Empty, Opaque, Subnormal };
 const char* to_string(Pattern pattern);
 // The lights every floor has (synthetic_inputs.hpp): three over the canvas, none, one, more
 // than any preset's cap, off the canvas, with a tiny radius, with a huge one.
-enum class LightSet { Standard, None, One, Many, OffCanvas, Tiny, Huge };
+enum class LightSet { Standard, None, One, Many, OffCanvas, Tiny, Huge, Sun, GrazingSun };
 const char* to_string(LightSet lights);
 // What the tiles' masks hold, for each kind the plugin reads: varying content, no mask at all
 // (the host gives a transparent texture), all 0, all 1, content on half the tile only.

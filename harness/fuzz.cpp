@@ -201,7 +201,7 @@ std::vector<CaseSpec> shrink_candidates(const CaseSpec& f, const PluginInfo& plu
         if (v == p.default_value) continue;
         with([&](CaseSpec& s) { s.params.erase(p.name); });
         float half = v + (p.default_value - v) * 0.5f;
-        if (p.type != "float") half = std::round(half);
+        if (p.type == "int" || p.type == "bool") half = std::round(half);
         if (half != v && half != p.default_value)
             with([&](CaseSpec& s) { s.params[p.name] = half; });
     }

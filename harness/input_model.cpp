@@ -46,7 +46,9 @@ const std::vector<InputDimension>& input_dimensions() {
         {"floors", "how many floors the scene has"},
         {"plugin floor", "which floors carry the plugin (its floor index)"},
         {"pixels", "the input pixels: alpha 0, subnormal, ramps, 1; colour up to 65504"},
-        {"lights", "the floor's lights: none, one, many, off the canvas, radius tiny and huge"},
+        {"lights",
+         "the floor's lights (with heights): none, one, many, off the canvas, radius tiny "
+         "and huge; a sun at 40 degrees and one on the horizon"},
         {"masks", "the floor's masks: absent, empty, full, partial, with content"},
         {"params", "the parameters: defaults, ends, presets, sweeps, combinations"},
         {"time", "acetate_time: 0, fractional, negative, large"},
@@ -104,7 +106,7 @@ void scenario_at(const PluginInfo& plugin, std::span<const double> u, CaseSpec& 
                          ? -1
                          : int32_t(std::min<double>(s.floors - 1, (u[3] - 0.5) * 2 * s.floors));
     s.pattern = category<Pattern>(u[4], 6);
-    s.lights = category<LightSet>(u[5], 7);
+    s.lights = category<LightSet>(u[5], 9);
     s.masks = category<MaskFill>(u[6], 5);
     s.time = time_at(u[7]);
     s.frames = 1 + std::min(3u, uint32_t(u[8] * 4));

@@ -96,6 +96,10 @@ std::vector<LightDesc> make_lights(LightSet kind, uint32_t w, uint32_t h, std::m
         l.color = {float(0.5 + 0.5 * unit(rng)), float(0.5 + 0.5 * unit(rng)),
                    float(0.5 + 0.5 * unit(rng))};
         l.intensity = float(0.5 + 1.5 * unit(rng));
+        // Heights from 0 to 0.6 radius, a function of the position rather than another random
+        // draw, so the other values stay what earlier versions of the harness used.
+        const double spread = x * 0.37 + y * 0.11;
+        l.height = float(radius * 0.6 * (spread - std::floor(spread)));
         return l;
     };
     auto inside = [&](double radius) {
@@ -126,6 +130,13 @@ std::vector<LightDesc> make_lights(LightSet kind, uint32_t w, uint32_t h, std::m
             break;
         case LightSet::Huge:
             for (int i = 0; i < 3; ++i) lights.push_back(inside(1.0e6));
+            break;
+        case LightSet::Sun:
+            for (int i = 0; i < 3; ++i)
+                lights.push_back(inside(1.0 + reach * (0.3 + 0.4 * unit(rng))));
+            break;
+        case LightSet::GrazingSun:
+            lights.push_back(light(w * 0.5, h * 0.5, 1.0 + reach * 0.5));
             break;
     }
     return lights;
@@ -207,6 +218,8 @@ FloorInput make_floor_input(const InputChoice& choice, uint32_t canvas_width,
         in.masks[kind] = std::move(mask);
     }
     in.lights = make_lights(choice.lights, canvas_width, canvas_height, rng);
+    if (choice.lights == LightSet::Sun) in.sun = SunDesc{30, 40, {1.0f, 0.95f, 0.8f}, 1.5f};
+    if (choice.lights == LightSet::GrazingSun) in.sun = SunDesc{200, 0, {1.0f, 0.6f, 0.3f}, 2.0f};
     return in;
 }
 
@@ -242,8 +255,14 @@ Result<SceneDesc> write_scene(const SceneLayout& layout, const std::filesystem::
             lights.push_back({{"pos", l.pos},
                               {"radius", l.radius},
                               {"color", l.color},
-                              {"intensity", l.intensity}});
+                              {"intensity", l.intensity},
+                              {"height", l.height}});
         json floor = {{"name", fmt::format("floor{}", f)}, {"tiles", {tile}}, {"lights", lights}};
+        if (in.sun)
+            floor["sun"] = {{"azimuth", in.sun->azimuth},
+                            {"elevation", in.sun->elevation},
+                            {"color", in.sun->color},
+                            {"intensity", in.sun->intensity}};
         if (f < layout.floor_effects.size() && !layout.floor_effects[f].empty())
             floor["effects"] = effects_json(layout.floor_effects[f]);
         floors.push_back(floor);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ struct FloorInput {
     ImageRGBA image;                               // width x height
     std::map<std::string, ImageRGBA> masks;        // kind -> data mask, width x height
     std::vector<LightDesc> lights;
+    std::optional<SunDesc> sun;
 };
 
 // Floor `floor` of `floors`: floor 0 covers the whole canvas, higher floors alternate between

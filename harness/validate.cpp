@@ -282,12 +282,21 @@ Result<PluginInfo> describe_plugin(const fs::path& file) {
     info.scope = d.scope == ACETATE_SCOPE_GLOBAL ? "global" : "floor";
     info.coverage = d.coverage == ACETATE_COVERAGE_EXPANDING ? "expanding" : "preserving";
     info.masks = d.masks;
-    for (const EffectParam& p : d.params)
-        info.params.push_back({p.name,
-                               p.type == ACETATE_PARAM_INT    ? "int"
-                               : p.type == ACETATE_PARAM_BOOL ? "bool"
-                                                              : "float",
-                               p.default_value, p.min_value, p.max_value});
+    for (const EffectParam& p : d.params) {
+        if (p.hidden) {
+            info.hidden_params.push_back(p.name);
+            continue;
+        }
+        const char* type = p.type == ACETATE_PARAM_INT     ? "int"
+                           : p.type == ACETATE_PARAM_BOOL  ? "bool"
+                           : p.type == ACETATE_PARAM_VEC2  ? "vec2"
+                           : p.type == ACETATE_PARAM_VEC3  ? "vec3"
+                           : p.type == ACETATE_PARAM_COLOR ? "color"
+                                                           : "float";
+        info.params.push_back(
+            {p.name, type, p.default_value, p.min_value, p.max_value, p.components()});
+    }
+    info.abi = abi_version_string(d.abi_minor);
     for (const auto& [name, values] : d.presets) info.presets.push_back(name);
     info.source_digest = d.source_digest;
     auto sha = file_sha256(file);

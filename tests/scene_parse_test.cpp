@@ -197,9 +197,10 @@ TEST_F(SceneParseTest, UnknownFieldsAreRejectedAtEveryLevel) {
         {json::json_pointer("/canvas"),
          "canvas: unknown field \"extra\" (allowed: width, height, background)"},
         {json::json_pointer("/floors/1"),
-         "floors[1]: unknown field \"extra\" (allowed: name, tiles, lights, effects)"},
+         "floors[1]: unknown field \"extra\" (allowed: name, tiles, lights, sun, effects)"},
         {json::json_pointer("/floors/0/lights/0"),
-         "floors[0].lights[0]: unknown field \"extra\" (allowed: pos, radius, color, intensity)"},
+         "floors[0].lights[0]: unknown field \"extra\" (allowed: pos, radius, color, intensity, "
+         "height)"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.expected);

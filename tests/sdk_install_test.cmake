@@ -14,11 +14,13 @@
 # 2. Copies examples/out-of-tree-plugin to <WORK_DIR>/src, configures it in <WORK_DIR>/build
 #    with CMAKE_PREFIX_PATH=<WORK_DIR>/prefix (and checks find_package found that prefix), and
 #    builds it.
-# 3. Checks tint.so: its dynamic symbol table defines acetate_effect_entry_v1 and nothing else
-#    but the linker's standard symbols; it needs no Acetate library; it carries the source
-#    digest acetate_add_effect() computes from tint.cpp and tint.frag.
-# 4. Renders examples/out-of-tree-plugin/scene.json with the installed CLI and the plugin
-#    (validation layers on; no premultiplied violations). Skipped with -DRENDER=OFF.
+# 3. Checks each plugin the example builds (tint.so, drop_shadow.so, colour_grade.so): its
+#    dynamic symbol table defines acetate_effect_entry_v1 and nothing else but the linker's
+#    standard symbols; it needs no Acetate library; its generated header embeds each shader;
+#    it carries the source digest acetate_add_effect() computes from its sources and shaders.
+# 4. Renders examples/out-of-tree-plugin/scene.json with the installed CLI and the plugins
+#    (validation layers on; every plugin loaded; no premultiplied violations; the image
+#    differs from the scene without effects). Skipped with -DRENDER=OFF.
 # 5. Edits the copy of tint.frag, rebuilds, and checks the embedded-shader header and the
 #    digest follow.
 # Any failure ends the script with message(FATAL_ERROR), so ctest reports the test failed.
@@ -89,6 +91,7 @@ foreach(path
     bin/acetate
     include/acetate/effect.h
     include/acetate/effect.hpp
+    include/acetate/effect_params.hpp
     include/acetate/version.h
     ${LIBDIR}/cmake/Acetate/AcetateConfig.cmake
     ${LIBDIR}/cmake/Acetate/AcetateConfigVersion.cmake
@@ -173,81 +176,113 @@ if(NOT acetate_dir STREQUAL want_dir)
 endif()
 run_step("build the out-of-tree plugin" "${CMAKE_COMMAND}" --build "${example_build}")
 
-# ---- 3. Check the plugin binary ----
-set(plugin "${example_build}/tint.so")
-require_file("${plugin}")
-if(EXISTS "${example_build}/libtint.so")
-  message(FATAL_ERROR "sdk_install_test: the plugin was written as libtint.so")
-endif()
+# ---- 3. Check each plugin binary ----
+# check_plugin(<name> SOURCES <files>... SHADERS <files>...): <name>.so (not lib<name>.so)
+# exports only the entry point, needs no Acetate library, embeds each shader in
+# <name>_shaders.hpp and carries the digest of its sources, then its shaders.
+function(check_plugin name)
+  cmake_parse_arguments(PARSE_ARGV 1 arg "" "" "SOURCES;SHADERS")
+  set(plugin "${example_build}/${name}.so")
+  require_file("${plugin}")
+  if(EXISTS "${example_build}/lib${name}.so")
+    message(FATAL_ERROR "sdk_install_test: the plugin was written as lib${name}.so")
+  endif()
 
-run_step("nm -D --defined-only tint.so" "${NM}" -D --defined-only "${plugin}")
-string(REPLACE "\n" ";" lines "${step_output}")
-set(exported "")
-set(entry_found FALSE)
-foreach(line IN LISTS lines)
-  if(line STREQUAL "")
-    continue()
-  endif()
-  # "<address> <type> <name>[@version]"
-  if(NOT line MATCHES "^[0-9a-fA-F]* *([A-Za-z]) ([^ @]+)")
-    message(FATAL_ERROR "sdk_install_test: cannot read nm line \"${line}\"")
-  endif()
-  set(type "${CMAKE_MATCH_1}")
-  set(symbol "${CMAKE_MATCH_2}")
-  if(symbol STREQUAL "acetate_effect_entry_v1")
-    if(NOT type STREQUAL "T")
-      message(FATAL_ERROR "sdk_install_test: acetate_effect_entry_v1 is not a global function "
-                          "(nm type ${type})")
+  run_step("nm -D --defined-only ${name}.so" "${NM}" -D --defined-only "${plugin}")
+  string(REPLACE "\n" ";" lines "${step_output}")
+  set(exported "")
+  set(entry_found FALSE)
+  foreach(line IN LISTS lines)
+    if(line STREQUAL "")
+      continue()
     endif()
-    set(entry_found TRUE)
-  elseif(NOT symbol MATCHES "^(_init|_fini|_edata|_end|__bss_start|__end__)$")
-    list(APPEND exported "${type} ${symbol}")
+    # "<address> <type> <name>[@version]"
+    if(NOT line MATCHES "^[0-9a-fA-F]* *([A-Za-z]) ([^ @]+)")
+      message(FATAL_ERROR "sdk_install_test: cannot read nm line \"${line}\"")
+    endif()
+    set(type "${CMAKE_MATCH_1}")
+    set(symbol "${CMAKE_MATCH_2}")
+    if(symbol STREQUAL "acetate_effect_entry_v1")
+      if(NOT type STREQUAL "T")
+        message(FATAL_ERROR "sdk_install_test: ${name}.so: acetate_effect_entry_v1 is not a "
+                            "global function (nm type ${type})")
+      endif()
+      set(entry_found TRUE)
+    elseif(NOT symbol MATCHES "^(_init|_fini|_edata|_end|__bss_start|__end__)$")
+      list(APPEND exported "${type} ${symbol}")
+    endif()
+  endforeach()
+  if(NOT entry_found)
+    message(FATAL_ERROR "sdk_install_test: ${name}.so does not export "
+                        "acetate_effect_entry_v1:\n${step_output}")
   endif()
-endforeach()
-if(NOT entry_found)
-  message(FATAL_ERROR "sdk_install_test: tint.so does not export acetate_effect_entry_v1:\n${step_output}")
-endif()
-if(exported)
-  list(JOIN exported "\n  " exported)
-  message(FATAL_ERROR "sdk_install_test: tint.so exports more than its entry point:\n  ${exported}")
-endif()
-message(STATUS "ok: tint.so exports only acetate_effect_entry_v1")
-
-if(READELF)
-  run_step("readelf -d tint.so" "${READELF}" -d "${plugin}")
-  if(step_output MATCHES "NEEDED[^\n]*acetate")
-    message(FATAL_ERROR "sdk_install_test: tint.so links an Acetate library; a plugin is built "
-                        "against the headers only:\n${step_output}")
+  if(exported)
+    list(JOIN exported "\n  " exported)
+    message(FATAL_ERROR "sdk_install_test: ${name}.so exports more than its entry point:\n"
+                        "  ${exported}")
   endif()
-endif()
+  message(STATUS "ok: ${name}.so exports only acetate_effect_entry_v1")
 
+  if(READELF)
+    run_step("readelf -d ${name}.so" "${READELF}" -d "${plugin}")
+    if(step_output MATCHES "NEEDED[^\n]*acetate")
+      message(FATAL_ERROR "sdk_install_test: ${name}.so links an Acetate library; a plugin is "
+                          "built against the headers only:\n${step_output}")
+    endif()
+  endif()
+
+  set(header "${example_build}/${name}_acetate/${name}_shaders.hpp")
+  require_file("${header}")
+  file(READ "${header}" text)
+  set(files "")
+  foreach(file IN LISTS arg_SOURCES arg_SHADERS)
+    list(APPEND files "${example_src}/${file}")
+  endforeach()
+  foreach(shader IN LISTS arg_SHADERS)
+    string(MAKE_C_IDENTIFIER "${shader}" identifier)
+    if(NOT text MATCHES "inline constexpr std::string_view ${identifier} = R\"acetate_glsl\\(")
+      message(FATAL_ERROR "sdk_install_test: ${header} does not define ${identifier}:\n${text}")
+    endif()
+  endforeach()
+  expected_digest(digest ${files})
+  require_digest("${plugin}" "${digest}")
+  message(STATUS "ok: ${name}.so carries the source digest ${digest}")
+  set(digest "${digest}" PARENT_SCOPE)
+endfunction()
+
+check_plugin(drop_shadow SOURCES drop_shadow.cpp SHADERS drop_shadow_blur.frag drop_shadow.frag)
+check_plugin(colour_grade SOURCES colour_grade.cpp SHADERS colour_grade.frag)
+# tint last: step 5 edits it and checks the digest it had.
+check_plugin(tint SOURCES tint.cpp SHADERS tint.frag)
+set(plugin "${example_build}/tint.so")
 set(header "${example_build}/tint_acetate/tint_shaders.hpp")
-require_file("${header}")
-file(READ "${header}" text)
-if(NOT text MATCHES "inline constexpr std::string_view tint_frag = R\"acetate_glsl\\(")
-  message(FATAL_ERROR "sdk_install_test: ${header} does not define tint_frag:\n${text}")
-endif()
-expected_digest(digest "${example_src}/tint.cpp" "${example_src}/tint.frag")
-require_digest("${plugin}" "${digest}")
-message(STATUS "ok: tint.so carries the source digest ${digest}")
 
-# ---- 4. The installed CLI renders the example scene with the plugin (skip with -DRENDER=OFF) ----
+# ---- 4. The installed CLI renders the example scene with the plugins (skip with -DRENDER=OFF) ----
 if(NOT DEFINED RENDER OR RENDER)
   set(image "${WORK_DIR}/tint.png")
   file(REMOVE "${image}")
   file(MAKE_DIRECTORY "${WORK_DIR}/cache/mesa" "${WORK_DIR}/cache/xdg")
-  # The freshly built tint.so is in no registry: --allow-unvalidated loads it with a warning.
+  # The freshly built plugins are in no registry: --allow-unvalidated loads them with a warning.
   run_step("acetate render scene.json --plugin-path <build> --allow-unvalidated"
     "${CMAKE_COMMAND}" -E env ACETATE_VALIDATION=1 "MESA_SHADER_CACHE_DIR=${WORK_DIR}/cache/mesa"
     "XDG_CACHE_HOME=${WORK_DIR}/cache/xdg"
     "${prefix}/bin/acetate" render "${SOURCE_DIR}/examples/out-of-tree-plugin/scene.json"
     -o "${image}" --plugin-path "${example_build}" --allow-unvalidated)
   require_file("${image}")
-  if(NOT step_output MATCHES " 0 violations")
+  if(NOT step_output MATCHES " 0 violations" OR step_output MATCHES " [1-9][0-9]* violations")
     message(FATAL_ERROR "sdk_install_test: the render reported premultiplied violations:\n${step_output}")
   endif()
+  # The scene lists all three; each is loaded from the example's build, with the warning.
+  foreach(name tint drop_shadow colour_grade)
+    set(loaded "loading unvalidated plugin com\\.example\\.${name} \\([^)\n]*/${name}\\.so\\)")
+    if(NOT step_output MATCHES "${loaded}")
+      message(FATAL_ERROR "sdk_install_test: the render did not load com.example.${name} from "
+                          "${example_build}/${name}.so:\n${step_output}")
+    endif()
+  endforeach()
+  message(STATUS "ok: the render loaded tint, drop_shadow and colour_grade, 0 violations")
 
-  # The plugin must change the render: the same scene with every effect removed (image paths
+  # The plugins must change the render: the same scene with every effect removed (image paths
   # made absolute, since the copy lives elsewhere) gives a different image.
   set(scene_dir "${SOURCE_DIR}/examples/out-of-tree-plugin")
   file(READ "${scene_dir}/scene.json" plain)
@@ -264,16 +299,16 @@ if(NOT DEFINED RENDER OR RENDER)
     endforeach()
   endforeach()
   file(WRITE "${WORK_DIR}/plain.json" "${plain}")
-  run_step("acetate render (the same scene without the plugin)"
+  run_step("acetate render (the same scene without the plugins)"
     "${CMAKE_COMMAND}" -E env "MESA_SHADER_CACHE_DIR=${WORK_DIR}/cache/mesa"
     "XDG_CACHE_HOME=${WORK_DIR}/cache/xdg"
     "${prefix}/bin/acetate" render "${WORK_DIR}/plain.json" -o "${WORK_DIR}/plain.png")
   file(SHA256 "${image}" with_plugin)
   file(SHA256 "${WORK_DIR}/plain.png" without_plugin)
   if(with_plugin STREQUAL without_plugin)
-    message(FATAL_ERROR "sdk_install_test: the tint plugin did not change the render")
+    message(FATAL_ERROR "sdk_install_test: the plugins did not change the render")
   endif()
-  message(STATUS "ok: the plugin changes the render")
+  message(STATUS "ok: the plugins change the render")
 endif()
 
 # ---- 5. A changed shader is re-embedded and changes the digest ----

@@ -8,49 +8,28 @@ namespace {
 
 using namespace acetate::sdk;
 
+// Each parameter is declared once; info() lists these constants, and presets name them.
+inline constexpr FloatParam kStrength{
+    "strength", "How far the colour moves towards the tint: 0 leaves it unchanged.", 0.5f, 0.0f,
+    1.0f};
+inline constexpr ColorParam kTint{"tint", "The tint (linear RGB).", {1.0f, 0.8f, 0.55f}};
+
 class TintEffect final : public Effect {
   public:
     EffectInfo info() const override {
         EffectInfo info;
         info.id = "com.example.tint";
         info.display_name = "Tint (example)";
-        info.version_major = 1;
         info.scope = ACETATE_SCOPE_FLOOR;
         info.coverage = ACETATE_COVERAGE_PRESERVING;
-        info.params = {
-            {.name = "strength",
-             .description = "How far the colour moves towards the tint: 0 leaves it unchanged.",
-             .default_value = 0.5f,
-             .min_value = 0.0f,
-             .max_value = 1.0f},
-            {.name = "r",
-             .description = "Red factor of the tint (linear).",
-             .default_value = 1.0f,
-             .min_value = 0.0f,
-             .max_value = 1.0f},
-            {.name = "g",
-             .description = "Green factor of the tint (linear).",
-             .default_value = 0.8f,
-             .min_value = 0.0f,
-             .max_value = 1.0f},
-            {.name = "b",
-             .description = "Blue factor of the tint (linear).",
-             .default_value = 0.55f,
-             .min_value = 0.0f,
-             .max_value = 1.0f},
-        };
-        info.presets = {
-            {"low", {{"strength", 0.25f}}},
-            {"medium", {{"strength", 0.5f}}},
-            {"high", {{"strength", 0.75f}}},
-            {"ultra", {{"strength", 1.0f}}},
-        };
+        info.params = {kStrength, kTint};
+        info.presets = quality_presets({{kStrength, {0.25f, 0.5f, 0.75f, 1.0f}}});
         return info;
     }
 
     // One fullscreen pass: previous -> result.
     void build(Graph& graph, const Floor&) const override {
-        graph.pass({.name = "tint", .glsl = std::string(tint_frag), .inputs = {"previous"}});
+        graph.pass({.name = "tint", .glsl = tint_frag, .inputs = {"previous"}});
     }
 };
 

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "cli/output_paths.hpp"
@@ -141,9 +142,13 @@ int run_render(const RenderCommand& command) {
     if (ext != ".exr" && ext != ".png")
         return fail(
             fmt::format("-o {}: the output must end in .exr or .png", command.output.string()));
-    if (!std::isfinite(command.time))
+    // Effects also read the time as a 32-bit float (acetate_time), which must stay finite.
+    if (!std::isfinite(command.time) ||
+        std::abs(command.time) > double(std::numeric_limits<float>::max()))
         return fail(
-            fmt::format("--time: expected a finite number of seconds, got {}", command.time));
+            fmt::format("--time: expected a finite number of seconds within the 32-bit "
+                        "float range, got {}",
+                        command.time));
     auto view = parse_view(command.view);
     if (!view) return fail(view.error());
     CompositorOptions options;

@@ -18,7 +18,7 @@ struct RenderCommand {
     std::string format = "rgba16f";                   // --format
     std::optional<std::filesystem::path> stats;       // --stats FILE
     std::vector<std::filesystem::path> plugin_paths;  // --plugin-path DIR (repeatable)
-    float time = 0;                                   // --time SECONDS: what effects animate with
+    double time = 0;  // --time SECONDS: what effects animate with (double: smooth at 10^5 s)
     bool pipeline_cache = true;  // --no-pipeline-cache turns the disk cache off
     // Host load policy (docs/registry.md, "Host policy"): a plugin is loaded only if the
     // registry has it VALIDATED for its exact binary.

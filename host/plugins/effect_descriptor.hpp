@@ -4,6 +4,7 @@
 
 #include <acetate/effect.h>
 
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -16,10 +17,16 @@ struct EffectParam {
     std::string name, description;
     uint32_t type = ACETATE_PARAM_FLOAT;
     float default_value = 0, min_value = 0, max_value = 0;
+    bool hidden = false;                              // 1.1: set by presets only
+    std::array<float, 4> default_vector{0, 0, 0, 0};  // x = default_value for a scalar
+
+    // 1 for a scalar, 2 or 3 for ACETATE_PARAM_VEC2 / VEC3 / COLOR.
+    uint32_t components() const;
 };
 
 struct EffectDescriptor {
     std::string id, display_name, source_digest;
+    uint32_t abi_minor = 0;  // the ABI 1.x the plugin was built against
     uint32_t version[3] = {0, 0, 0};
     uint32_t scope = ACETATE_SCOPE_FLOOR;
     uint32_t coverage = ACETATE_COVERAGE_PRESERVING;
@@ -31,10 +38,15 @@ struct EffectDescriptor {
     std::string version_string() const;
 };
 
-// Copies and checks a descriptor: struct size, ABI version, id (reverse-DNS), names, scope,
-// coverage, every parameter's range and default, every preset's names and values. The error
-// names `where` (the plugin file) and the field, e.g.
-// `lighting.so: params[2] "darkness": default 1.5 is outside [0, 1]`.
+// The ABI version a plugin asks for, read before anything else so that a plugin newer than the
+// host is refused with both versions named rather than with a field it cannot read.
+std::string abi_version_string(uint32_t minor);
+
+// Copies and checks a descriptor: struct size, ABI version (a plugin built for a newer 1.x than
+// this host is refused: `x.so: built for Acetate ABI 1.2; this host supports ABI 1.1`), id
+// (reverse-DNS), names, scope, coverage, every parameter's range and default, every preset's names
+// and values. The error names `where` (the plugin file) and the field, e.g. `lighting.so: params[2]
+// "darkness": default 1.5 is outside [0, 1]`.
 Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* descriptor,
                                          const std::string& where);
 

@@ -108,29 +108,54 @@ VkPipeline Compositor::host_pipeline(Stage stage) const {
     return pipelines_->pipeline(stage, options_.format);
 }
 
-Result<void> Compositor::create_effects(const SceneDesc& scene) {
+Result<SceneMasks> Compositor::create_effects(const SceneDesc& scene) {
+    // Masks are decoded and composited only for kinds some floor effect declares, once, before
+    // any build() (which may read them) and for the GPU alike. A plugin that fails to load
+    // here is reported, with its field, by create_effect_instance below.
+    for (const FloorDesc& floor : scene.floors)
+        for (const EffectRef& ref : floor.effects)
+            if (auto plugin = renderer_.plugins().load(ref.plugin))
+                for (const std::string& kind : plugin.value()->descriptor.masks)
+                    options_.mask_kinds.insert(kind);
+    auto masks = composite_scene_masks(scene, options_.mask_kinds);
+    if (!masks) return masks.error();
+
+    InstanceSetup setup;
+    setup.format = options_.format;
+    setup.targets = &effect_targets_;
+    setup.checked_builtins = options_.checked_builtins;
     floor_effects_.resize(scene.floors.size());
     for (size_t f = 0; f < scene.floors.size(); ++f) {
+        setup.masks = &masks->floors[f];
         for (const EffectRef& ref : scene.floors[f].effects) {
-            auto instance =
-                create_effect_instance(renderer_, scene, ref, int64_t(f), options_.format,
-                                       effect_targets_, options_.checked_builtins);
+            auto instance = create_effect_instance(renderer_, scene, ref, int64_t(f), setup);
             if (!instance) return instance.error();
             floor_effects_[f].push_back(std::move(instance.value()));
         }
     }
+    setup.masks = nullptr;
     for (const EffectRef& ref : scene.global_effects) {
-        auto instance = create_effect_instance(renderer_, scene, ref, -1, options_.format,
-                                               effect_targets_, options_.checked_builtins);
+        auto instance = create_effect_instance(renderer_, scene, ref, -1, setup);
         if (!instance) return instance.error();
         global_effects_.push_back(std::move(instance.value()));
     }
-    // Masks are composited only for kinds some loaded effect reads.
-    for (const auto& floor : floor_effects_)
-        for (const auto& e : floor)
-            for (const std::string& kind : e->plugin->descriptor.masks)
-                options_.mask_kinds.insert(kind);
-    return {};
+    return masks;
+}
+
+PixelRect Compositor::expansion_area(const SceneDesc& scene, size_t floor) const {
+    // Effects run one after another, so their reaches add up. One expanding effect without a
+    // declared reach may change any pixel.
+    const PixelRect canvas{0, 0, int64_t(scene.width), int64_t(scene.height)};
+    int64_t reach = 0;
+    for (const auto& e : floor_effects_[floor]) {
+        if (!e->expanding) continue;
+        if (!e->reach) return canvas;
+        reach += *e->reach;
+    }
+    const PixelRect bounds = floor_coverage_bounds(scene, floor);
+    if (bounds.empty()) return bounds;
+    return intersect(canvas, PixelRect{bounds.x0 - reach, bounds.y0 - reach, bounds.x1 + reach,
+                                       bounds.y1 + reach});
 }
 
 Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const SceneDesc& scene,
@@ -159,9 +184,11 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
     out->width_ = scene.width;
     out->height_ = scene.height;
     out->pipelines_ = &renderer.host_pipelines();
-    ACETATE_TRY(out->create_effects(scene));
+    auto masks = out->create_effects(scene);
+    if (!masks) return masks.error();
 
-    auto resources = SceneResources::load(context, scene, options.format, out->options_.mask_kinds);
+    auto resources = SceneResources::load(context, scene, options.format, out->options_.mask_kinds,
+                                          masks.value());
     if (!resources) return resources.error();
     out->resources_ = std::move(resources.value());
     ACETATE_TRY(out->create_targets(scene));
@@ -179,12 +206,15 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
     }
     for (Stage stage : stages) ACETATE_TRY(out->pipelines_->ensure(stage, options.format));
     // The planner's view of each floor, fixed at load. A floor with a coverage-expanding effect
-    // may draw anywhere (a glow past its tiles), so for planning it covers the whole canvas.
+    // may draw past its tiles (a glow): for planning it covers its tiles grown by the effects'
+    // declared reach, or the whole canvas when one declared none.
     out->geometry_ = out->resources_->geometry();
     for (size_t f = 0; f < out->floor_effects_.size(); ++f) {
         const auto& effects = out->floor_effects_[f];
-        if (std::any_of(effects.begin(), effects.end(), [](const auto& e) { return e->expanding; }))
-            out->geometry_[f].coverage = {0, 0, int64_t(scene.width), int64_t(scene.height)};
+        const bool expanding =
+            std::any_of(effects.begin(), effects.end(), [](const auto& e) { return e->expanding; });
+        out->expansion_areas_.push_back(expanding ? out->expansion_area(scene, f) : PixelRect{});
+        if (expanding) out->geometry_[f].coverage = out->expansion_areas_.back();
     }
     ACETATE_TRY(out->warm_pipelines());
 
@@ -471,12 +501,12 @@ void Compositor::record_floor_direct(VkCommandBuffer cmd, const FloorStep& step,
 }
 
 void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step,
-                                             bool clear_all, float time, FloorFrameReport& report) {
+                                             bool clear_all, double time,
+                                             FloorFrameReport& report) {
     GpuImage& color = *floor_color_;
     const auto& effects = floor_effects_[step.floor];
     const bool expanding =
         std::any_of(effects.begin(), effects.end(), [](const auto& e) { return e->expanding; });
-    const PixelRect canvas{0, 0, int64_t(width_), int64_t(height_)};
     // Effects may sample around a pixel, so with effects the whole target starts transparent:
     // nothing another floor left in it can be read.
     clear_all = clear_all || !effects.empty();
@@ -535,7 +565,8 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
             io.result = next;
             io.masks = &resources_->floors()[step.floor].masks;
             io.blank_mask = resources_->blank_mask();
-            io.result_scissor = effect->expanding || expanding ? canvas : step.scissor;
+            io.result_scissor =
+                effect->expanding || expanding ? expansion_areas_[step.floor] : step.scissor;
             io.time = time;
             io.canvas_width = width_;
             io.canvas_height = height_;
@@ -550,7 +581,7 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
 
     // Composite: the floor over the accumulation, only where the floor's stencil says 1 (or,
     // after a coverage-expanding effect, wherever the floor is not fully transparent).
-    const PixelRect composite_area = expanding ? canvas : step.scissor;
+    const PixelRect composite_area = expanding ? expansion_areas_[step.floor] : step.scissor;
     accumulation_.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     // Same layout, but the tile pass's stencil writes must be visible to the composite's load.
     stencil.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
@@ -575,7 +606,7 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     report.pixels_shaded += composite_area.area();
 }
 
-void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, float time) {
+void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, double time) {
     final_accumulation_ = &accumulation_;
     if (global_effects_.empty() || !global_effects_enabled_) return;
     GpuImage* current = &accumulation_;
@@ -644,7 +675,7 @@ void Compositor::record_output(VkCommandBuffer cmd, FrameStats& stats) {
 }
 
 void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats,
-                              float time) {
+                              double time) {
     viewed_floor_ = floor_color_ ? &*floor_color_ : nullptr;
     accumulation_.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
@@ -679,7 +710,7 @@ void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameS
     record_output(cmd, stats);
 }
 
-Result<FrameStats> Compositor::render(uint32_t active_floor, float time) {
+Result<FrameStats> Compositor::render(uint32_t active_floor, double time) {
     if (active_floor >= floor_count())
         return make_error(
             ErrorCode::InvalidInput,

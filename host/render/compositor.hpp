@@ -87,7 +87,7 @@ class Compositor {
     // Renders floors 0..active_floor and the output. Fails with InvalidInput for a floor index
     // out of range, or when the view needs a floor target this compositor was loaded without.
     // `time` (seconds) is what effects animate with.
-    Result<FrameStats> render(uint32_t active_floor, float time = 0.0f);
+    Result<FrameStats> render(uint32_t active_floor, double time = 0.0);
     // Changes the view for later frames (no allocation; see render()).
     void set_view(OutputView view) { options_.view = view; }
     // Turns every effect off (or back on) for later frames: floors still go through their
@@ -123,15 +123,18 @@ class Compositor {
 
   private:
     Compositor(Renderer& renderer);
-    Result<void> create_effects(const SceneDesc& scene);
-    void record_global_effects(VkCommandBuffer cmd, FrameStats& stats, float time);
+    // Builds every effect instance; returns the mask composites it made (for the GPU upload).
+    Result<SceneMasks> create_effects(const SceneDesc& scene);
+    // Where a floor with coverage-expanding effects may change pixels (see create_effects).
+    PixelRect expansion_area(const SceneDesc& scene, size_t floor) const;
+    void record_global_effects(VkCommandBuffer cmd, FrameStats& stats, double time);
     VkPipeline host_pipeline(Stage stage) const;
     Result<void> create_targets(const SceneDesc& scene);
     Result<void> warm_pipelines();
-    void record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats, float time);
+    void record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats, double time);
     void record_floor_direct(VkCommandBuffer cmd, const FloorStep& step, FloorFrameReport& report);
     void record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step, bool clear_all,
-                                     float time, FloorFrameReport& report);
+                                     double time, FloorFrameReport& report);
     void record_output(VkCommandBuffer cmd, FrameStats& stats);
     void draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor, const PixelRect& scissor,
                     FloorFrameReport& report);
@@ -160,7 +163,8 @@ class Compositor {
     std::optional<GpuImage> floor_stencil_;
     std::optional<GpuImage> floor_pingpong_;  // only when some floor has effects
     GpuBuffer violations_;
-    std::vector<FloorGeometry> geometry_;  // what the planner works from (fixed at load)
+    std::vector<FloorGeometry> geometry_;     // what the planner works from (fixed at load)
+    std::vector<PixelRect> expansion_areas_;  // per floor; empty unless it has expanding effects
     LoadStats load_stats_;
     FramePlan last_plan_;
     bool effects_enabled_ = true;

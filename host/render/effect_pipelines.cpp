@@ -12,13 +12,6 @@
 
 namespace acetate {
 
-std::string input_variable(const std::string& input) {
-    std::string name = input;
-    for (char& c : name)
-        if (c == '.') c = '_';
-    return name;
-}
-
 std::string checked_builtins_glsl() {
     // The helpers are defined before the #defines, so inside them min, max, clamp and
     // smoothstep are still the built-ins. The NaN test compares bits: isnan() survives
@@ -88,35 +81,81 @@ std::string checked_builtins_glsl() {
     return out;
 }
 
-std::string effect_glsl_preamble(const EffectDescriptor& effect,
-                                 const std::vector<std::string>& inputs, uint32_t kind,
-                                 bool checked_builtins) {
+std::string effect_glsl_preamble(const EffectDescriptor& effect, const GraphPass& pass,
+                                 const std::vector<GraphPhase>& phases, bool checked_builtins) {
+    // The block only grows at its end (after acetate_params), so a plugin that gives a whole
+    // SPIR-V module declaring the ABI 1.0 block still reads the same offsets.
     std::string out =
         "#version 450\n"
         "layout(set = 0, binding = 0, std140) uniform AcetateFrame {\n"
         "    vec4 acetate_canvas;   // width, height, 1/width, 1/height\n"
         "    vec4 acetate_output;   // this pass's output: width, height, 1/width, 1/height\n"
         "    vec4 acetate_misc;     // time (s), floor index (-1: global)\n";
-    out += fmt::format("    vec4 acetate_params[{}];\n}};\n",
-                       std::max<size_t>(1, effect.params.size()));
-    out += "#define acetate_time (acetate_misc.x)\n#define acetate_floor (int(acetate_misc.y))\n";
-    for (size_t i = 0; i < effect.params.size(); ++i)
-        out += fmt::format("#define param_{} (acetate_params[{}].x)\n", effect.params[i].name, i);
-    for (size_t i = 0; i < inputs.size(); ++i)
+    out += fmt::format("    vec4 acetate_params[{}];\n", std::max<size_t>(1, effect.params.size()));
+    out +=
+        "    vec4 acetate_clock;    // whole seconds, fraction of the second (double on the CPU)\n";
+    out += fmt::format("    vec4 acetate_phases[{}];\n}};\n", std::max<size_t>(1, phases.size()));
+    out +=
+        "#define acetate_time (acetate_misc.x)\n#define acetate_floor (int(acetate_misc.y))\n"
+        "#define acetate_time_whole (acetate_clock.x)\n"
+        "#define acetate_time_fraction (acetate_clock.y)\n";
+    for (size_t i = 0; i < effect.params.size(); ++i) {
+        const uint32_t n = effect.params[i].components();
+        out += fmt::format("#define param_{} (acetate_params[{}].{})\n", effect.params[i].name, i,
+                           n == 1   ? "x"
+                           : n == 2 ? "xy"
+                                    : "xyz");
+    }
+    for (size_t i = 0; i < phases.size(); ++i)
+        out += fmt::format("#define phase_{} (acetate_phases[{}].x)\n", phases[i].name, i);
+    for (size_t i = 0; i < pass.inputs.size(); ++i) {
+        const std::string& name =
+            i < pass.input_names.size() ? pass.input_names[i] : input_variable(pass.inputs[i]);
         out += fmt::format("layout(set = 0, binding = {}) uniform sampler2D {};\n",
-                           EffectPipelines::kFirstInputBinding + i, input_variable(inputs[i]));
+                           EffectPipelines::kFirstInputBinding + i, name);
+        out += fmt::format(
+            "#define acetate_size_{0} (vec4(vec2(textureSize({0}, 0)), "
+            "1.0 / vec2(textureSize({0}, 0))))\n",
+            name);
+    }
     out += fmt::format(
         "layout(set = 0, binding = {}, std430) readonly buffer AcetateFloorData {{ float "
         "floor_data[]; }};\n",
         EffectPipelines::kFloorDataBinding);
-    if (kind == ACETATE_PASS_INSTANCED_QUADS)
+    out += fmt::format(
+        "struct AcetateLight {{ vec2 position; float height; float radius; vec3 color; "
+        "float intensity; vec3 direction; uint kind; }};\n"
+        "layout(set = 0, binding = {}, std430) readonly buffer AcetateLights {{ AcetateLight "
+        "acetate_lights[]; }};\n"
+        "#define acetate_light_count (acetate_lights.length())\n"
+        "#define ACETATE_LIGHT_POINT 0u\n#define ACETATE_LIGHT_SUN 1u\n",
+        EffectPipelines::kLightsBinding);
+    if (pass.kind == ACETATE_PASS_INSTANCED_QUADS)
         out +=
             "layout(location = 0) in vec2 acetate_uv;\n"
             "layout(location = 1) flat in int acetate_instance;\n";
     out += "layout(location = 0) out vec4 out_color;\n";
     if (checked_builtins) out += checked_builtins_glsl();
+    out += pass.defines;
     out += "#line 1\n";  // last: compiler messages give lines in the plugin's own text
     return out;
+}
+
+std::string effect_glsl_preamble(const EffectDescriptor& effect,
+                                 const std::vector<std::string>& inputs, uint32_t kind,
+                                 bool checked_builtins) {
+    GraphPass pass;
+    pass.inputs = inputs;
+    pass.kind = kind;
+    return effect_glsl_preamble(effect, pass, {}, checked_builtins);
+}
+
+size_t effect_clock_float(size_t params) {
+    return 12 + 4 * std::max<size_t>(1, params);
+}
+
+size_t effect_uniform_bytes(size_t params, size_t phases) {
+    return (effect_clock_float(params) + 4 + 4 * std::max<size_t>(1, phases)) * sizeof(float);
 }
 
 Result<std::unique_ptr<EffectPipelines>> EffectPipelines::create(VulkanContext& context,
@@ -131,6 +170,8 @@ Result<std::unique_ptr<EffectPipelines>> EffectPipelines::create(VulkanContext& 
         bindings.push_back({kFirstInputBinding + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
     bindings.push_back({kFloorDataBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr});
+    bindings.push_back({kLightsBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                        VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
     VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     set_info.bindingCount = uint32_t(bindings.size());

@@ -1,6 +1,7 @@
 #pragma once
 // What every effect pass shares: one pipeline layout (a push-descriptor set with the frame
-// uniforms at binding 0, up to 8 inputs at bindings 1..8, floor_data at binding 9), a linear
+// uniforms at binding 0, up to 8 inputs at bindings 1..8, floor_data at binding 9, the lights
+// at binding 10), a linear
 // clamp-to-edge sampler, and stand-ins for inputs a floor lacks (a transparent 1x1 texture for
 // a missing mask, a 4-float buffer for missing floor data). Pipelines live in the PipelinePool,
 // keyed by the SPIR-V's SHA-256, the output format and the blend.
@@ -13,6 +14,7 @@
 
 #include "core/result.hpp"
 #include "plugins/effect_descriptor.hpp"
+#include "plugins/effect_graph.hpp"
 #include "vulkan/gpu_image.hpp"
 
 namespace acetate {
@@ -26,6 +28,7 @@ class EffectPipelines {
     static constexpr uint32_t kFrameBinding = 0;
     static constexpr uint32_t kFirstInputBinding = 1;
     static constexpr uint32_t kFloorDataBinding = 9;
+    static constexpr uint32_t kLightsBinding = 10;  // ABI 1.1: the floor's lights
 
     static Result<std::unique_ptr<EffectPipelines>> create(VulkanContext& context,
                                                            PipelinePool& pool);
@@ -56,14 +59,36 @@ class EffectPipelines {
 struct EffectFrameUniforms {
     float canvas[4];  // width, height, 1/width, 1/height
     float output[4];  // this pass's output size and its reciprocal
-    float misc[4];    // time in seconds, floor index (-1 for global), 0, 0
-    // followed by one vec4 per parameter (value in .x)
+    float misc[4];    // time in seconds, floor index (-1 for global), instance data offset, 0
+    // followed by max(1, parameters) vec4 (a parameter's components), then the clock vec4
+    // (whole seconds, fraction), then max(1, phases) vec4 (phase in .x)
 };
 
+// Bytes of the frame uniforms for an effect with these counts, and the float index of the
+// clock and of the first phase.
+size_t effect_uniform_bytes(size_t params, size_t phases);
+size_t effect_clock_float(size_t params);
+
+// One light as the GLSL block AcetateLights lays it out (std430: 48 bytes).
+struct EffectLightGpu {
+    float position[2];
+    float height, radius;
+    float color[3];
+    float intensity;
+    float direction[3];
+    uint32_t kind;
+};
+static_assert(sizeof(EffectLightGpu) == 48);
+
 // The GLSL the host puts before a pass's source: version, the AcetateFrame block with a
-// param_<name> macro per parameter, one sampler2D per input, floor_data, out_color. With
-// `checked_builtins`, also checked_builtins_glsl(), so min, max, clamp and smoothstep in the
-// pass's own text are the checked ones.
+// param_<name> macro per parameter and phase_<name> per phase, one sampler2D per input (named
+// as the pass chose) with its acetate_size_<name>, floor_data, the lights block, out_color.
+// With `checked_builtins`, also checked_builtins_glsl(), so min, max, clamp and smoothstep in
+// the pass's own text are the checked ones. Then the pass's defines and `#line 1`.
+std::string effect_glsl_preamble(const EffectDescriptor& effect, const GraphPass& pass,
+                                 const std::vector<GraphPhase>& phases,
+                                 bool checked_builtins = false);
+// The same for a pass with default input names and no phases (tests).
 std::string effect_glsl_preamble(const EffectDescriptor& effect,
                                  const std::vector<std::string>& inputs, uint32_t kind,
                                  bool checked_builtins = false);
@@ -73,8 +98,5 @@ std::string effect_glsl_preamble(const EffectDescriptor& effect,
 // (component-wise), so a result the built-in leaves driver-dependent or undefined shows as NaN.
 // Integer forms forward to the built-ins unchanged; double forms are not provided.
 std::string checked_builtins_glsl();
-
-// The GLSL name of an input: '.' becomes '_' ("mask.water" -> "mask_water").
-std::string input_variable(const std::string& input);
 
 }  // namespace acetate

@@ -5,12 +5,14 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/pixel_rect.hpp"
 #include "plugins/effect_graph.hpp"
 #include "plugins/plugin_loader.hpp"
+#include "plugins/resolve_params.hpp"
 #include "render/frame_stats.hpp"
 #include "scene/scene.hpp"
 #include "vulkan/gpu_image.hpp"
@@ -30,7 +32,7 @@ struct EffectPassRuntime {
     uint32_t instance_data_offset = 0;
     uint64_t instanced_pixels = 0;  // sum of the quads' areas on the canvas
     bool from_glsl = false;         // compiled from GLSL; false: given as SPIR-V (not checkable)
-    GpuBuffer uniforms;             // EffectFrameUniforms + one vec4 per parameter
+    GpuBuffer uniforms;             // laid out as EffectFrameUniforms says
 };
 
 struct EffectInstance {
@@ -38,12 +40,16 @@ struct EffectInstance {
     std::string label;   // "floor2.acetate.lighting" / "global.acetate.bloom"
     int64_t floor = -1;  // -1: global
     bool expanding = false;
-    std::vector<float> params;  // resolved, clamped
+    ParamVectors params;                // resolved, clamped; 4 floats per parameter
+    std::vector<double> phase_periods;  // declared phases (seconds), in declaration order
+    std::optional<uint32_t> reach;      // declared reach of an expanding effect (pixels)
     std::vector<EffectPassRuntime> passes;
     std::map<std::string, GpuImage*> targets;  // by declared name; owned by EffectTargets
     std::map<std::string, GpuImage> textures;  // add_texture(), this instance's own
     GpuBuffer floor_data;                      // empty buffer if the plugin set none
     bool has_floor_data = false;
+    GpuBuffer lights;  // EffectLightGpu per light of the floor; empty buffer if none
+    bool has_lights = false;
 };
 
 // Intermediate targets shared by instances of one plugin on different floors (floors run one
@@ -60,18 +66,26 @@ class EffectTargets {
     std::map<std::string, std::unique_ptr<GpuImage>> images_;
 };
 
-// Resolves an effect's parameters: defaults, then the preset, then the scene's params, each
-// clamped to its range. Errors name the scene file and field (unknown preset or parameter, a
-// value that is not a number).
-Result<std::vector<float>> resolve_params(const EffectDescriptor& descriptor, const EffectRef& ref,
-                                          const std::string& scene_file);
+// The Vulkan format of an ACETATE_FORMAT_* target; ACETATE_FORMAT_FLOOR is `floor_format`.
+VkFormat target_vk_format(uint32_t format, VkFormat floor_format);
+
+// What create_effect_instance needs besides the scene and the effect.
+struct InstanceSetup {
+    VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;  // the floor's images
+    EffectTargets* targets = nullptr;
+    bool checked_builtins = false;      // compile GLSL with checked_builtins_glsl()
+    const FloorMasks* masks = nullptr;  // the floor's mask composites, for read_mask
+};
 
 // Loads the plugin an EffectRef names, builds its instance for `floor` (-1: global), compiles
-// its passes and allocates what they write. `checked_builtins` compiles GLSL passes with the
-// checked min, max, clamp and smoothstep (checked_builtins_glsl()).
-Result<std::unique_ptr<EffectInstance>> create_effect_instance(
-    Renderer& renderer, const SceneDesc& scene, const EffectRef& ref, int64_t floor,
-    VkFormat format, EffectTargets& targets, bool checked_builtins = false);
+// its passes and allocates what they write.
+Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
+                                                               const SceneDesc& scene,
+                                                               const EffectRef& ref, int64_t floor,
+                                                               const InstanceSetup& setup);
+
+// The pixels a floor's tiles cover (the union of their rects, clipped to the canvas).
+PixelRect floor_coverage_bounds(const SceneDesc& scene, size_t floor);
 
 // What an instance reads and writes in one frame.
 struct EffectIo {
@@ -80,7 +94,7 @@ struct EffectIo {
     const std::map<std::string, GpuImage>* masks = nullptr;  // the floor's own
     const GpuImage* blank_mask = nullptr;  // scene-size, transparent: for kinds the floor lacks
     PixelRect result_scissor;              // the area "result" passes shade
-    float time = 0;
+    double time = 0;  // seconds; phases and the clock are reduced from it in double
     uint32_t canvas_width = 0, canvas_height = 0;
     bool warm_up = false;  // shade one pixel per pass (load-time pipeline warm-up)
 };

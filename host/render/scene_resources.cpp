@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "scene/image_io.hpp"
-#include "scene/mask_compositor.hpp"
 #include "vulkan/vulkan_context.hpp"
 
 namespace acetate {
@@ -43,7 +42,7 @@ Result<std::unique_ptr<GpuImage>> upload(VulkanContext& context, const std::stri
 
 Result<std::unique_ptr<SceneResources>> SceneResources::load(
     VulkanContext& context, const SceneDesc& scene, VkFormat texture_format,
-    const std::set<std::string>& mask_kinds) {
+    const std::set<std::string>& mask_kinds, const SceneMasks& masks) {
     auto out = std::make_unique<SceneResources>();
     struct Texture {
         const GpuImage* image;
@@ -51,7 +50,6 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
         uint32_t width, height;
     };
     std::map<std::filesystem::path, Texture> by_path;  // a file shared by tiles loads once
-    MaskImages mask_images;
 
     // Errors name the scene field that refers to the file, not only the file.
     auto in_scene = [&](const Error& e, size_t f, size_t t, const std::string& field) {
@@ -94,26 +92,18 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
             if (loaded.opaque && !loaded.pixels.empty())
                 floor.geometry.opaque.push_back(loaded.pixels);
             floor.tiles.push_back(loaded);
-
-            for (const auto& [kind, path] : tile.masks) {
-                if (!mask_kinds.count(kind) || mask_images.count(path)) continue;
-                auto mask = load_image(path, ImageRole::Mask);
-                if (!mask) return in_scene(mask.error(), f, t, "masks." + kind);
-                ++context.counters().images_loaded;
-                mask_images.emplace(path, std::move(mask.value()));
-            }
         }
         floor.geometry.needs_target = !floor_desc.effects.empty();
         out->floors_.push_back(std::move(floor));
     }
 
-    // One scene-space texture per kind per floor, only for kinds asked for and present.
+    // One scene-space texture per kind per floor, only for kinds asked for and present: the
+    // composites build() already read, uploaded as they are.
+    context.counters().images_loaded += masks.files_decoded;
     for (size_t f = 0; f < scene.floors.size(); ++f) {
         for (const std::string& kind : mask_kinds) {
-            const bool present =
-                std::any_of(scene.floors[f].tiles.begin(), scene.floors[f].tiles.end(),
-                            [&](const TileDesc& t) { return t.masks.count(kind) != 0; });
-            if (!present) {
+            const auto composite = masks.floors.at(f).find(kind);
+            if (composite == masks.floors.at(f).end()) {
                 if (!out->blank_mask_) {
                     auto blank = GpuImage::create(
                         context, "mask.blank", scene.width, scene.height,
@@ -126,14 +116,12 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
                 }
                 continue;
             }
-            const ImageRGBA composite =
-                composite_floor_mask(scene.floors[f], kind, scene.width, scene.height, mask_images);
             auto image = GpuImage::create(
                 context, fmt::format("floor{}.mask.{}", f, kind), scene.width, scene.height,
                 VK_FORMAT_R16G16B16A16_SFLOAT,
                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, false);
             if (!image) return image.error();
-            ACETATE_TRY(upload_image(context, image.value(), composite));
+            ACETATE_TRY(upload_image(context, image.value(), composite->second));
             out->floors_[f].masks.emplace(kind, std::move(image.value()));
         }
     }

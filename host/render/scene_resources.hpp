@@ -12,6 +12,7 @@
 
 #include "core/pixel_rect.hpp"
 #include "render/frame_plan.hpp"
+#include "scene/floor_masks.hpp"
 #include "scene/scene.hpp"
 #include "vulkan/gpu_image.hpp"
 
@@ -36,12 +37,14 @@ struct LoadedFloor {
 
 class SceneResources {
   public:
-    // Decodes and uploads every tile image in `texture_format`, and composites the masks of
-    // `mask_kinds` per floor (kinds no effect needs are not even decoded). Errors name the file.
+    // Decodes and uploads every tile image in `texture_format`, and uploads each floor's mask
+    // composites of `mask_kinds` (made once by composite_scene_masks, before effects were
+    // built). Errors name the file.
     static Result<std::unique_ptr<SceneResources>> load(VulkanContext& context,
                                                         const SceneDesc& scene,
                                                         VkFormat texture_format,
-                                                        const std::set<std::string>& mask_kinds);
+                                                        const std::set<std::string>& mask_kinds,
+                                                        const SceneMasks& masks = {});
 
     const std::vector<LoadedFloor>& floors() const { return floors_; }
     // Tile texels with a == 0 but rgb != 0, or NaN/Inf, summed over the files loaded. The tile

@@ -85,6 +85,8 @@ class SceneReader {
     SceneRect read_rect(const json& rect, const std::string& path) const;
     std::map<std::string, fs::path> read_masks(const json& masks, const std::string& path) const;
     LightDesc read_light(const json& light, const std::string& path) const;
+    SunDesc read_sun(const json& sun, const std::string& path) const;
+    std::array<float, 3> read_color(const json& color, const std::string& path) const;
     std::vector<EffectRef> read_effects(const json* list, const std::string& path) const;
     EffectRef read_effect(const json& effect, const std::string& path) const;
     void check_format(const json& root) const;
@@ -252,7 +254,7 @@ std::array<float, 4> SceneReader::read_background(const json& value,
 }
 
 FloorDesc SceneReader::read_floor(const json& floor, const std::string& path) const {
-    expect_object(floor, path, {"name", "tiles", "lights", "effects"});
+    expect_object(floor, path, {"name", "tiles", "lights", "sun", "effects"});
     FloorDesc desc;
     desc.name = non_empty_string(required(floor, path, "name"), field_path(path, "name"));
 
@@ -271,6 +273,8 @@ FloorDesc SceneReader::read_floor(const json& floor, const std::string& path) co
         for (size_t i = 0; i < lights->size(); ++i)
             desc.lights.push_back(read_light((*lights)[i], item_path(lights_path, i)));
     }
+    if (const json* sun = optional(floor, "sun"))
+        desc.sun = read_sun(*sun, field_path(path, "sun"));
     desc.effects = read_effects(optional(floor, "effects"), field_path(path, "effects"));
     return desc;
 }
@@ -335,20 +339,42 @@ std::map<std::string, fs::path> SceneReader::read_masks(const json& masks,
 }
 
 LightDesc SceneReader::read_light(const json& light, const std::string& path) const {
-    expect_object(light, path, {"pos", "radius", "color", "intensity"});
+    expect_object(light, path, {"pos", "radius", "color", "intensity", "height"});
     LightDesc desc;
     const std::string pos_path = field_path(path, "pos");
     const json& pos = array_of(required(light, path, "pos"), pos_path, 2, "2 numbers [x, y]");
     for (size_t i = 0; i < 2; ++i) desc.pos[i] = finite_float(pos[i], item_path(pos_path, i));
     desc.radius =
         float_at_least(required(light, path, "radius"), field_path(path, "radius"), 0.0f, false);
-    if (const json* color = optional(light, "color")) {
-        const std::string color_path = field_path(path, "color");
-        array_of(*color, color_path, 3, "3 numbers [r, g, b]");
-        for (size_t c = 0; c < 3; ++c)
-            desc.color[c] = float_at_least((*color)[c], item_path(color_path, c), 0.0f, true);
-    }
+    if (const json* color = optional(light, "color"))
+        desc.color = read_color(*color, field_path(path, "color"));
     if (const json* intensity = optional(light, "intensity"))
+        desc.intensity = float_at_least(*intensity, field_path(path, "intensity"), 0.0f, true);
+    if (const json* height = optional(light, "height"))
+        desc.height = float_at_least(*height, field_path(path, "height"), 0.0f, true);
+    return desc;
+}
+
+std::array<float, 3> SceneReader::read_color(const json& color, const std::string& path) const {
+    array_of(color, path, 3, "3 numbers [r, g, b]");
+    std::array<float, 3> rgb{};
+    for (size_t c = 0; c < 3; ++c)
+        rgb[c] = float_at_least(color[c], item_path(path, c), 0.0f, true);
+    return rgb;
+}
+
+SunDesc SceneReader::read_sun(const json& sun, const std::string& path) const {
+    expect_object(sun, path, {"azimuth", "elevation", "color", "intensity"});
+    SunDesc desc;
+    desc.azimuth = finite_float(required(sun, path, "azimuth"), field_path(path, "azimuth"));
+    const std::string elevation_path = field_path(path, "elevation");
+    const json& elevation = required(sun, path, "elevation");
+    desc.elevation = finite_float(elevation, elevation_path);
+    if (desc.elevation < 0 || desc.elevation > 90)
+        fail(elevation_path, "must be in [0, 90] degrees, got " + describe(elevation));
+    if (const json* color = optional(sun, "color"))
+        desc.color = read_color(*color, field_path(path, "color"));
+    if (const json* intensity = optional(sun, "intensity"))
         desc.intensity = float_at_least(*intensity, field_path(path, "intensity"), 0.0f, true);
     return desc;
 }
@@ -419,6 +445,14 @@ Result<SceneDesc> parse_scene_file(const fs::path& file) {
             fmt::format("{}: file not found: {}", file.string(), (ec ? file : shown).string()));
     }
     return parse_scene_text(text.value(), file);
+}
+
+std::array<float, 3> SunDesc::direction() const {
+    // In double, so that 90 degrees gives exactly (0, 0, 1) after rounding to float.
+    const double pi = 3.14159265358979323846;
+    const double az = double(azimuth) * pi / 180.0, el = double(elevation) * pi / 180.0;
+    return {float(std::cos(el) * std::cos(az)), float(std::cos(el) * std::sin(az)),
+            float(std::sin(el))};
 }
 
 }  // namespace acetate

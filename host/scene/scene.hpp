@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,20 @@ struct LightDesc {
     float radius = 0;                     // scene pixels, > 0
     std::array<float, 3> color{1, 1, 1};  // linear
     float intensity = 1;                  // >= 0
+    float height = 0;                     // above the floor, scene pixels, >= 0 (default: on it)
+};
+
+// A floor's directional light. Azimuth: degrees in the scene plane from +x towards +y (so
+// clockwise on screen, y being down): 0 means the light comes from the right. Elevation: degrees
+// above the floor, 0 (grazing) to 90 (straight down onto it).
+struct SunDesc {
+    float azimuth = 0;
+    float elevation = 45;
+    std::array<float, 3> color{1, 1, 1};  // linear
+    float intensity = 1;                  // >= 0
+
+    // Unit vector from the floor towards the sun: x right, y down, z up out of the floor.
+    std::array<float, 3> direction() const;
 };
 
 // A reference to an effect plugin as the scene names it; checked against the plugin at load.
@@ -44,6 +59,7 @@ struct FloorDesc {
     std::string name;
     std::vector<TileDesc> tiles;
     std::vector<LightDesc> lights;
+    std::optional<SunDesc> sun;
     std::vector<EffectRef> effects;
 };
 

@@ -25,18 +25,25 @@
 
 #include <acetate/effect.hpp>
 #include <algorithm>
-#include <cmath>
 #include <string>
-#include <string_view>
 
 #include "bloom_shaders.hpp"
 
 namespace {
 
-// A pass's GLSL: the names its shader reads, as #defines, then the shader file.
-std::string glsl(std::string_view defines, std::string_view body) {
-    return std::string(defines) + "#line 1\n" + std::string(body);
-}
+using namespace acetate::sdk;
+
+inline constexpr FloatParam kThreshold{
+    "threshold", "linear light (max of r, g, b) where bloom starts", 1.0f, 0.0f, 16.0f};
+inline constexpr FloatParam kKnee{
+    "knee", "soft knee width as a fraction of the threshold (0 = hard)", 0.5f, 0.0f, 1.0f};
+inline constexpr FloatParam kIntensity{
+    "intensity", "how much of the bright-pass light is added back, spread", 0.6f, 0.0f, 4.0f};
+// A quality knob the presets set, yet public: scenes and tests set it too (bloom_test.cpp).
+inline constexpr IntParam kLevels{
+    "levels", "depth of the mip chain: each level doubles the glow's reach", 5, 1, 8};
+inline constexpr FloatParam kRadius{
+    "radius", "upsample tent radius, in texels of the coarser level", 1.0f, 0.5f, 2.0f};
 
 std::string down(int k) {
     return "down" + std::to_string(k);
@@ -45,62 +52,53 @@ std::string up(int k) {
     return "up" + std::to_string(k);
 }
 
-class Bloom final : public acetate::sdk::Effect {
+class Bloom final : public Effect {
   public:
-    acetate::sdk::EffectInfo info() const override {
-        acetate::sdk::EffectInfo e;
+    EffectInfo info() const override {
+        EffectInfo e;
         e.id = "acetate.bloom";
         e.display_name = "Bloom";
         e.scope = ACETATE_SCOPE_GLOBAL;
         e.coverage = ACETATE_COVERAGE_EXPANDING;
-        e.params = {
-            {"threshold", "linear light (max of r, g, b) where bloom starts", 1.0f, 0.0f, 16.0f},
-            {"knee", "soft knee width as a fraction of the threshold (0 = hard)", 0.5f, 0.0f, 1.0f},
-            {"intensity", "how much of the bright-pass light is added back, spread", 0.6f, 0.0f,
-             4.0f},
-            {"levels", "depth of the mip chain: each level doubles the glow's reach", 5.0f, 1.0f,
-             8.0f, ACETATE_PARAM_INT},
-            {"radius", "upsample tent radius, in texels of the coarser level", 1.0f, 0.5f, 2.0f},
-        };
-        e.presets = {{"low", {{"levels", 3}}},
-                     {"medium", {{"levels", 4}}},
-                     {"high", {{"levels", 5}}},
-                     {"ultra", {{"levels", 6}}}};
+        e.params = {kThreshold, kKnee, kIntensity, kLevels, kRadius};
+        e.presets = quality_presets({{kLevels, {3, 4, 5, 6}}});
         return e;
     }
 
-    void build(acetate::sdk::Graph& graph, const acetate::sdk::Floor& floor) const override {
+    void build(Graph& graph, const Floor& floor) const override {
         // The host hands an INT parameter over already rounded and clamped to its declared
-        // range, [1, 8]; rounding and clamping again here is only a guard.
-        const int levels = std::clamp(int(std::lround(floor.param("levels"))), 1, 8);
+        // range, [1, 8]; clamping again here is only a guard.
+        const int levels = std::clamp(floor[kLevels], 1, 8);
         for (int k = 1; k <= levels; ++k) graph.target(down(k), 1u << k);
         for (int k = 1; k < levels; ++k) graph.target(up(k), 1u << k);
 
+        // Each shader serves every level: input_names give its inputs the names it reads.
         graph.pass({.name = "prefilter",
-                    .glsl = glsl("#define SRC previous\n", bloom_prefilter_frag),
+                    .glsl = bloom_prefilter_frag,
                     .inputs = {"previous"},
-                    .output = down(1)});
+                    .output = down(1),
+                    .input_names = {"src"}});
         for (int k = 2; k <= levels; ++k)
             graph.pass({.name = down(k),
-                        .glsl = glsl("#define SRC " + down(k - 1) + "\n", bloom_down_frag),
+                        .glsl = bloom_down_frag,
                         .inputs = {down(k - 1)},
-                        .output = down(k)});
+                        .output = down(k),
+                        .input_names = {"src"}});
         // A pass cannot read and write one target, so each level gets its own upK.
         for (int k = levels - 1; k >= 1; --k) {
             const std::string coarser = k + 1 == levels ? down(levels) : up(k + 1);
             graph.pass({.name = up(k),
-                        .glsl = glsl("#define SRC " + coarser + "\n#define ADD " + down(k) + "\n",
-                                     bloom_up_frag),
+                        .glsl = bloom_up_frag,
                         .inputs = {coarser, down(k)},
-                        .output = up(k)});
+                        .output = up(k),
+                        .input_names = {"coarser", "level"}});
         }
-        const std::string bloom = levels == 1 ? down(1) : up(1);
         graph.pass({.name = "composite",
-                    .glsl = glsl("#define BLOOM " + bloom + "\n#define LEVELS " +
-                                     std::to_string(levels) + ".0\n",
-                                 bloom_composite_frag),
-                    .inputs = {"previous", bloom},
-                    .output = "result"});
+                    .glsl = bloom_composite_frag,
+                    .inputs = {"previous", levels == 1 ? down(1) : up(1)},
+                    .output = "result",
+                    .defines = "#define LEVELS " + std::to_string(levels) + ".0\n",
+                    .input_names = {"", "bloom"}});  // "": previous keeps its name
     }
 };
 

@@ -1,5 +1,5 @@
 // acetate.bloom "prefilter": bright-pass + the first, firefly-safe 2x downsample.
-// Reads SRC (previous, the composite), writes down1 (ceil(canvas / 2)).
+// Reads src (previous, the composite), writes down1 (ceil(canvas / 2)).
 //
 // Grid: output texel i covers input texels 2i and 2i+1 (anchored at the top-left, the way the
 // host sizes targets: ceil(size / 2)). Positions are in input texels, so uv = pos / input size
@@ -28,10 +28,10 @@ vec3 bright(vec3 c) {
     return c * (scale * (CAP / max(m, CAP)));  // cap: no overflow down the chain
 }
 
-vec3 tap(vec2 pos, vec2 inv) { return bright(texture(SRC, pos * inv).rgb); }
+vec3 tap(vec2 pos, vec2 inv) { return bright(texture(src, pos * inv).rgb); }
 
 void main() {
-    vec2 inv = 1.0 / vec2(textureSize(SRC, 0));
+    vec2 inv = 1.0 / vec2(textureSize(src, 0));
     vec2 c = 2.0 * gl_FragCoord.xy;  // centre of this texel's 2x2 input block
     vec3 a = tap(c + vec2(-1.0, -1.0), inv);
     vec3 b = tap(c + vec2(1.0, -1.0), inv);

@@ -1,50 +1,50 @@
 // acetate.lighting -- a floor effect: ambient light with a day/night level, the floor's own
 // point lights from the scene, and a darkness level. Coverage-preserving.
+//
+// The lights come from the host's acetate_lights block (ABI 1.1), so build() has nothing to
+// prepare: one pass, the same for every floor.
 
 #include <acetate/effect.hpp>
-#include <vector>
 
 #include "lighting_shaders.hpp"
 
 namespace {
 
-class Lighting final : public acetate::sdk::Effect {
+using namespace acetate::sdk;
+
+inline constexpr FloatParam kDay{"day", "0 = night, 1 = full day: blends the two ambient levels",
+                                 1.0f, 0.0f, 1.0f};
+inline constexpr FloatParam kDayAmbient{"day_ambient", "ambient light level by day", 1.0f, 0.0f,
+                                        2.0f};
+inline constexpr FloatParam kNightAmbient{"night_ambient", "ambient light level by night", 0.15f,
+                                          0.0f, 2.0f};
+inline constexpr FloatParam kDarkness{
+    "darkness", "dims ambient and point lights alike (0 = none, 1 = black)", 0.0f, 0.0f, 1.0f};
+inline constexpr FloatParam kFlicker{"flicker", "how much point lights flicker with time", 0.0f,
+                                     0.0f, 1.0f};
+// A cost knob, not a look: only the presets set it (no scene or test ever did).
+inline constexpr IntParam kMaxLights{.name = "max_lights",
+                                     .description = "point lights considered per floor",
+                                     .default_value = 16,
+                                     .min_value = 0,
+                                     .max_value = 64,
+                                     .hidden = true};
+
+class Lighting final : public Effect {
   public:
-    acetate::sdk::EffectInfo info() const override {
-        acetate::sdk::EffectInfo e;
+    EffectInfo info() const override {
+        EffectInfo e;
         e.id = "acetate.lighting";
         e.display_name = "Lighting";
         e.scope = ACETATE_SCOPE_FLOOR;
         e.coverage = ACETATE_COVERAGE_PRESERVING;
-        e.params = {
-            {"day", "0 = night, 1 = full day: blends the two ambient levels", 1.0f, 0.0f, 1.0f},
-            {"day_ambient", "ambient light level by day", 1.0f, 0.0f, 2.0f},
-            {"night_ambient", "ambient light level by night", 0.15f, 0.0f, 2.0f},
-            {"darkness", "dims ambient and point lights alike (0 = none, 1 = black)", 0.0f, 0.0f,
-             1.0f},
-            {"flicker", "how much point lights flicker with time", 0.0f, 0.0f, 1.0f},
-            {"max_lights", "point lights considered per floor", 16.0f, 0.0f, 64.0f,
-             ACETATE_PARAM_INT},
-        };
-        e.presets = {{"low", {{"max_lights", 4}}},
-                     {"medium", {{"max_lights", 8}}},
-                     {"high", {{"max_lights", 16}}},
-                     {"ultra", {{"max_lights", 64}}}};
+        e.params = {kDay, kDayAmbient, kNightAmbient, kDarkness, kFlicker, kMaxLights};
+        e.presets = quality_presets({{kMaxLights, {4, 8, 16, 64}}});
         return e;
     }
 
-    void build(acetate::sdk::Graph& graph, const acetate::sdk::Floor& floor) const override {
-        // The floor's lights, prepared once at load: the shader loops over them per pixel.
-        std::vector<float> data{float(floor.lights().size())};
-        for (const AcetateLight& l : floor.lights()) {
-            data.insert(data.end(), {l.pos[0], l.pos[1], l.radius, l.intensity, l.color[0],
-                                     l.color[1], l.color[2], 0.0f});
-        }
-        graph.floor_data(data);
-        graph.pass({.name = "light",
-                    .glsl = std::string(lighting_frag),
-                    .inputs = {"previous"},
-                    .output = "result"});
+    void build(Graph& graph, const Floor&) const override {
+        graph.pass({.name = "light", .glsl = lighting_frag, .inputs = {"previous"}});
     }
 };
 

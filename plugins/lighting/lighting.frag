@@ -3,7 +3,11 @@
 // pixel stays (0, 0, 0, 0) (docs/design.md, L-alpha-zero: the lighting bug that started it
 // all), and alpha is passed through untouched.
 //
-// floor_data: [light count, then per light: x, y, radius, intensity, r, g, b, unused].
+// Lights: the host's acetate_lights[] (point lights in scene order, then the floor's sun).
+// Only point lights count. The sun is ignored: on a flat floor without normals a directional
+// light would only add a constant, which is what the ambient level already is. A point light's
+// height is ignored too: its falloff is by distance on the floor, as before lights had a
+// height, so scenes render exactly as they did.
 
 float falloff(float distance_over_radius) {
     // Smooth: 1 at the light, 0 with zero slope at the radius.
@@ -16,15 +20,16 @@ void main() {
     vec2 pos = gl_FragCoord.xy;  // full-resolution pass: scene pixels, y down
     float ambient = mix(param_night_ambient, param_day_ambient, param_day) * (1.0 - param_darkness);
     vec3 light = vec3(ambient);
-    int count = min(int(floor_data[0]), int(param_max_lights));
+    // Points come first, so the preset's cap counts point lights, as it always has; i is the
+    // point's index, which keeps each light's flicker phase.
+    int count = min(acetate_light_count, int(param_max_lights));
     for (int i = 0; i < count; ++i) {
-        int b = 1 + i * 8;
-        float r = floor_data[b + 2];
-        float d = length(pos - vec2(floor_data[b], floor_data[b + 1])) / r;
+        AcetateLight l = acetate_lights[i];
+        if (l.kind != ACETATE_LIGHT_POINT) continue;
+        float d = length(pos - l.position) / l.radius;
         if (d >= 1.0) continue;
         float flicker = 1.0 + param_flicker * 0.15 * sin(acetate_time * 7.0 + float(i) * 1.7);
-        vec3 colour = vec3(floor_data[b + 4], floor_data[b + 5], floor_data[b + 6]);
-        light += colour * (floor_data[b + 3] * falloff(d) * flicker * (1.0 - param_darkness));
+        light += l.color * (l.intensity * falloff(d) * flicker * (1.0 - param_darkness));
     }
     out_color = vec4(c.rgb * light, c.a);
 }

@@ -1,5 +1,5 @@
 /*
- * acetate/effect.h -- the Acetate effect plugin ABI, version 1.
+ * acetate/effect.h -- the Acetate effect plugin ABI, version 1.1.
  *
  * A plugin is a shared library exporting ONE function, acetate_effect_entry_v1. Everything
  * crossing the boundary is C: plain structs of fixed-size fields, opaque handles, int32 status
@@ -18,7 +18,18 @@
  * floors.
  *
  * Names, fields, values and function signatures in this file are fixed by ABI version 1. A
- * later version adds fields only at the end of structs that carry struct_size.
+ * later minor version adds fields only at the end of structs that carry struct_size, and adds
+ * new structs (each with struct_size first) where a 1.0 struct had none. Every reader checks
+ * struct_size before it reads a field added after 1.0: the host does so for what a plugin
+ * passes, and the C++ layer (acetate/effect.hpp) for what the host passes. A plugin built
+ * against 1.0 therefore loads and renders unchanged in a 1.1 host.
+ *
+ * What 1.1 added, each marked "1.1" where it is declared: the descriptor's abi_minor and
+ * param_exts (vector and colour parameters, hidden parameters); lights with height and a sun
+ * (AcetateLightInfo); the floor's coverage bounds, floor count and vector parameter values;
+ * masks readable at build (read_mask); target formats (declare_target_info); declared reach
+ * (set_reach); periodic phases computed in double precision (declare_phase); per-pass input
+ * names and defines; struct_size-first forms of the target and texture descriptions.
  */
 #ifndef ACETATE_EFFECT_H
 #define ACETATE_EFFECT_H
@@ -30,8 +41,12 @@
 extern "C" {
 #endif
 
-/* The ABI version this header describes. Fixed by ABI. */
+/* The ABI major version this header describes: what the host passes to the entry point.
+ * Fixed by ABI. */
 #define ACETATE_ABI_VERSION 1u
+/* The minor version (1.1): additions only. The descriptor's abi_minor says which minor a
+ * plugin was built against; a host refuses a plugin newer than itself. */
+#define ACETATE_ABI_MINOR 1u
 /* The one symbol a plugin exports. Fixed by ABI. */
 #define ACETATE_ENTRY_POINT_NAME "acetate_effect_entry_v1"
 
@@ -62,6 +77,31 @@ typedef int32_t AcetateStatus;
 #define ACETATE_PARAM_FLOAT 0u
 #define ACETATE_PARAM_INT 1u  /* a whole number held in a float */
 #define ACETATE_PARAM_BOOL 2u /* 0 or 1 held in a float */
+/* 1.1: vector parameters. min_value and max_value bound every component; the default of each
+ * component is in the parameter's AcetateParamExt (default_value must equal its first). A
+ * scene gives them as JSON arrays; presets cannot set them. */
+#define ACETATE_PARAM_VEC2 3u /* e.g. an offset in scene pixels */
+#define ACETATE_PARAM_VEC3 4u
+#define ACETATE_PARAM_COLOR 5u /* linear RGB */
+
+/* 1.1: AcetateParamExt flags. */
+/* Set only by presets (a quality knob such as a tap count): a scene may not set it, and the
+ * harness does not sweep it as a user parameter. */
+#define ACETATE_PARAM_HIDDEN 1u
+
+/* 1.1: target formats (AcetateTargetInfo). FLOOR is the format of the floor's own images,
+ * "previous" and "result" (RGBA16F unless the host renders in RGBA32F). */
+#define ACETATE_FORMAT_FLOOR 0u
+#define ACETATE_FORMAT_R16F 1u
+#define ACETATE_FORMAT_RG16F 2u
+#define ACETATE_FORMAT_RGBA16F 3u
+#define ACETATE_FORMAT_R32F 4u
+#define ACETATE_FORMAT_RG32F 5u
+#define ACETATE_FORMAT_RGBA32F 6u
+
+/* 1.1: light kinds (AcetateLightInfo). */
+#define ACETATE_LIGHT_POINT 0u
+#define ACETATE_LIGHT_SUN 1u /* directional: one per floor at most */
 
 #define ACETATE_PASS_FULLSCREEN 0u      /* one fragment per pixel of the pass's output */
 #define ACETATE_PASS_INSTANCED_QUADS 1u /* instance_count quads (particles, sprites), see below */
@@ -79,6 +119,17 @@ typedef struct AcetateParamDesc {
     float min_value;
     float max_value;
 } AcetateParamDesc;
+
+/*
+ * 1.1: what ABI 1.0's AcetateParamDesc cannot say about a parameter. The descriptor's
+ * param_exts, when not NULL, holds param_count pointers; params[i]'s extension is
+ * param_exts[i] (NULL: none, as in 1.0).
+ */
+typedef struct AcetateParamExt {
+    uint32_t struct_size;    /* sizeof(AcetateParamExt) as the plugin was built */
+    uint32_t flags;          /* ACETATE_PARAM_HIDDEN, ... */
+    float default_vector[4]; /* VEC2, VEC3, COLOR: the default of each component */
+} AcetateParamExt;
 
 /* One value of a quality preset. */
 typedef struct AcetatePresetValue {
@@ -114,15 +165,34 @@ typedef struct AcetateEffectDescriptor {
     const AcetatePresetDesc* presets;
     uint32_t preset_count;
     const char* source_digest; /* digest of the plugin's sources, embedded at build; may be "" */
+    /* ---- 1.1 (read only when struct_size covers them) ---- */
+    uint32_t abi_minor;                       /* ACETATE_ABI_MINOR the plugin was built against */
+    const AcetateParamExt* const* param_exts; /* NULL, or param_count pointers (each may be NULL) */
 } AcetateEffectDescriptor;
 
-/* A point light of the scene, in scene pixels (origin top-left, y down), linear colour. */
+/* A point light of the scene, in scene pixels (origin top-left, y down), linear colour.
+ * ABI 1.0's view of a light; 1.1 plugins read AcetateLightInfo, which also has the height. */
 typedef struct AcetateLight {
     float pos[2];
     float radius;
     float color[3];
     float intensity;
 } AcetateLight;
+
+/*
+ * 1.1: a light as ABI 1.1 describes it. Scene space: x right, y down (scene pixels), z up out of
+ * the floor towards the viewer.
+ */
+typedef struct AcetateLightInfo {
+    uint32_t struct_size; /* sizeof(AcetateLightInfo) as the host was built */
+    uint32_t kind;        /* ACETATE_LIGHT_* */
+    float pos[2];         /* POINT: position on the floor, scene pixels */
+    float height;         /* POINT: height above the floor, scene pixels, >= 0 */
+    float radius;         /* POINT: reach, scene pixels, > 0 */
+    float direction[3];   /* SUN: unit vector from the floor towards the sun (x, y, z) */
+    float color[3];       /* linear */
+    float intensity;      /* >= 0 */
+} AcetateLightInfo;
 
 /*
  * What an instance is built for. Owned by the host; valid only during build().
@@ -141,6 +211,18 @@ typedef struct AcetateFloorInfo {
     uint32_t param_count;
     const char* const* masks_present; /* mask kinds this floor has, of those the effect reads */
     uint32_t masks_present_count;
+    /* ---- 1.1 (check struct_size before reading) ---- */
+    /* The floor's point lights in scene order, then its sun if it has one. Each element's own
+     * struct_size says how much of it the host filled. NULL when light_info_count is 0. */
+    const AcetateLightInfo* const* light_infos;
+    uint32_t light_info_count;
+    /* The pixels the floor's tiles cover: x0, y0, x1, y1 with x1, y1 exclusive (scene pixels);
+     * all 0 for a floor without tiles; the whole canvas for a global instance. */
+    int32_t coverage_bounds[4];
+    uint32_t floor_count; /* floors in the scene */
+    /* 4 floats per parameter, in the order of params: a vector parameter's components (x, y,
+     * z), a scalar's value in x; the rest 0. */
+    const float* param_vectors;
 } AcetateFloorInfo;
 
 /* An intermediate target: RGBA in the host's target format, ceil(canvas / divisor) in size. */
@@ -149,15 +231,43 @@ typedef struct AcetateTargetDesc {
     uint32_t divisor; /* 1, 2, 4, 8, ... */
 } AcetateTargetDesc;
 
+/* 1.1: an intermediate target with a format. */
+typedef struct AcetateTargetInfo {
+    uint32_t struct_size; /* sizeof(AcetateTargetInfo) as the plugin was built */
+    const char* name;     /* as AcetateTargetDesc */
+    uint32_t divisor;     /* as AcetateTargetDesc */
+    uint32_t format;      /* ACETATE_FORMAT_*; a pass may blend (ADD, OVER) only onto 16- and
+                             32-bit float formats the device can blend */
+} AcetateTargetInfo;
+
+/*
+ * 1.1: a mask as build() reads it (read_mask): the floor's masks of one kind composited into one
+ * scene-space image, canvas-sized RGBA floats as the mask files hold them (data:
+ * not colour-decoded, not premultiplied), row-major, y down. Owned by the
+ * host, read-only, valid only until build() returns. A floor without the kind reads an all-zero
+ * image of the same size.
+ */
+typedef struct AcetateMaskImage {
+    uint32_t struct_size; /* set by the plugin: sizeof(AcetateMaskImage) as it was built */
+    uint32_t width;
+    uint32_t height;
+    uint32_t channels; /* 4 */
+    const float* data; /* width * height * channels floats */
+} AcetateMaskImage;
+
 /*
  * One pass. Its fragment shader sees (host-generated declarations, docs/plugin-guide.md):
  *   uniform block AcetateFrame: acetate_canvas (w, h, 1/w, 1/h), acetate_output (same for this
  *     pass's output), acetate_time (seconds), acetate_floor, and param_<name> per parameter;
  *   one sampler2D per input, bound in the order of `inputs`, named after the input with
  *     '.' replaced by '_': "previous", "mask.water" -> mask_water, "texture.ramp" ->
- *     texture_ramp, "bright" -> bright;
+ *     texture_ramp, "bright" -> bright (1.1: or as input_names says);
  *   floor_data[]: the floats given to set_floor_data (std430 storage buffer);
  *   out vec4 out_color.
+ * 1.1 adds (docs/plugin-guide.md has the whole list): acetate_size_<input> (vec4: the input's
+ * width, height and their reciprocals), the lights block acetate_lights[] with
+ * acetate_light_count, acetate_time_whole and acetate_time_fraction, phase_<name> per declared
+ * phase, param_<name> as a vec2/vec3 for vector parameters, and the pass's defines.
  * The plugin's GLSL supplies everything after those declarations, including main().
  *
  * An ACETATE_PASS_INSTANCED_QUADS pass draws instance_count quads; quad i covers the scene rect
@@ -180,6 +290,13 @@ typedef struct AcetatePassDesc {
     uint32_t blend;                /* ACETATE_BLEND_*; ADD and OVER need an earlier REPLACE */
     uint32_t instance_count;       /* instanced quads: how many (1 .. 1048576); else 0 */
     uint32_t instance_data_offset; /* instanced quads: first float of the rects in floor_data */
+    /* ---- 1.1 (the host reads them only when struct_size covers them) ---- */
+    /* NULL, or input_count GLSL names, one per input (NULL entries keep the default name): one
+     * shader can serve passes that read different targets. */
+    const char* const* input_names;
+    /* NULL, or lines of "#define NAME VALUE" placed before the GLSL; compiler messages still
+     * give line numbers in the plugin's own text. */
+    const char* defines;
 } AcetatePassDesc;
 
 /*
@@ -193,6 +310,15 @@ typedef struct AcetateTextureDesc {
     uint32_t height;   /* 1 .. 16384 */
     const float* rgba; /* width * height * 4 floats, all finite; copied */
 } AcetateTextureDesc;
+
+/* 1.1: AcetateTextureDesc with struct_size first. */
+typedef struct AcetateTextureInfo {
+    uint32_t struct_size; /* sizeof(AcetateTextureInfo) as the plugin was built */
+    const char* name;
+    uint32_t width;
+    uint32_t height;
+    const float* rgba;
+} AcetateTextureInfo;
 
 /* Host-owned handle through which build() declares an instance's work. Opaque. */
 typedef struct AcetateGraph AcetateGraph;
@@ -215,6 +341,23 @@ typedef struct AcetateHostApi {
     /* Adds a texture (see AcetateTextureDesc). Errors: bad or duplicate name, size, NULL data,
      * a value that is not finite. */
     AcetateStatus (*add_texture)(AcetateGraph* graph, const AcetateTextureDesc* texture);
+    /* ---- 1.1: check struct_size before calling (acetate/effect.hpp does) ---- */
+    /* declare_target with a format. Errors: as declare_target, an unknown format, or one the
+     * device cannot render to and sample. */
+    AcetateStatus (*declare_target_info)(AcetateGraph* graph, const AcetateTargetInfo* target);
+    /* add_texture with struct_size. */
+    AcetateStatus (*add_texture_info)(AcetateGraph* graph, const AcetateTextureInfo* texture);
+    /* Fills *mask with the floor's mask of `kind` (see AcetateMaskImage). Errors: a kind the
+     * descriptor does not list in masks, mask NULL or its struct_size too small. */
+    AcetateStatus (*read_mask)(AcetateGraph* graph, const char* kind, AcetateMaskImage* mask);
+    /* A coverage-expanding effect's reach: how many pixels past its floor's coverage bounds it
+     * may change. The host then shades "result" only within the bounds grown by the reach
+     * (without it, the whole canvas). Errors: a preserving effect, more than 16384. */
+    AcetateStatus (*set_reach)(AcetateGraph* graph, uint32_t pixels);
+    /* Declares phase_<name> in GLSL: fract(time / period_seconds), computed each frame in
+     * double precision, so an animation with that period is as smooth at 10^5 s as at 1 s.
+     * Errors: bad or duplicate name, a period not finite or not > 0, more than 64 phases. */
+    AcetateStatus (*declare_phase)(AcetateGraph* graph, const char* name, double period_seconds);
 } AcetateHostApi;
 
 /*

@@ -1,0 +1,107 @@
+#include "plugins/resolve_params.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace acetate {
+namespace {
+
+std::string known_params(const EffectDescriptor& d) {
+    std::string known;
+    for (const EffectParam& p : d.params)
+        if (!p.hidden) known += (known.empty() ? "" : ", ") + p.name;
+    return known.empty() ? "none" : known;
+}
+
+// A JSON number (or boolean) as a float; the error text says what is wrong.
+Result<float> number_of(const nlohmann::json& value, const std::string& field) {
+    if (!value.is_number() && !value.is_boolean())
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: expected a number, got {}", field, value.dump()));
+    // Read as double first: a value beyond the float range (-1e308) is out of range, not
+    // "not finite" as it would look after the conversion.
+    const double wide = value.is_boolean() ? (value.get<bool>() ? 1.0 : 0.0) : value.get<double>();
+    if (!std::isfinite(wide))
+        return make_error(ErrorCode::InvalidInput, field + ": not a finite number");
+    if (std::abs(wide) > double(std::numeric_limits<float>::max()))
+        return make_error(
+            ErrorCode::InvalidInput,
+            fmt::format("{}: {} is out of range for a 32-bit float", field, value.dump()));
+    return float(wide);
+}
+
+}  // namespace
+
+Result<ParamVectors> resolve_param_vectors(const EffectDescriptor& d, const EffectRef& ref,
+                                           const std::string& scene_file) {
+    ParamVectors values;
+    for (const EffectParam& p : d.params) {
+        values.push_back(p.default_vector);
+        values.back()[0] = p.default_value;
+    }
+    auto set = [&](size_t index, uint32_t component, float value) {
+        const EffectParam& p = d.params[index];
+        if (p.type == ACETATE_PARAM_INT) value = std::round(value);
+        if (p.type == ACETATE_PARAM_BOOL) value = value >= 0.5f ? 1.0f : 0.0f;
+        values[index][component] = std::clamp(value, p.min_value, p.max_value);
+    };
+    if (!ref.preset.empty()) {
+        const auto preset = d.presets.find(ref.preset);
+        if (preset == d.presets.end()) {
+            std::string known;
+            for (const auto& [name, unused] : d.presets)
+                known += (known.empty() ? "" : ", ") + name;
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("{}: {}.preset: plugin \"{}\" has no preset \"{}\" "
+                                          "(it has: {})",
+                                          scene_file, ref.where, d.id, ref.preset,
+                                          known.empty() ? "none" : known));
+        }
+        for (const auto& [name, value] : preset->second) set(size_t(d.param_index(name)), 0, value);
+    }
+    for (const auto& [name, value] : ref.params.items()) {
+        const std::string field = fmt::format("{}: {}.params.{}", scene_file, ref.where, name);
+        const int index = d.param_index(name);
+        if (index < 0)
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("{}: plugin \"{}\" has no such parameter (it has: {})",
+                                          field, d.id, known_params(d)));
+        const EffectParam& p = d.params[size_t(index)];
+        if (p.hidden)
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("{}: plugin \"{}\" sets this parameter from its presets "
+                                          "only; choose a preset instead",
+                                          field, d.id));
+        const uint32_t components = p.components();
+        if (components == 1) {
+            auto number = number_of(value, field);
+            if (!number) return number.error();
+            set(size_t(index), 0, number.value());
+            continue;
+        }
+        if (!value.is_array() || value.size() != components)
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("{}: expected an array of {} numbers, got {}", field,
+                                          components, value.dump()));
+        for (uint32_t c = 0; c < components; ++c) {
+            auto number = number_of(value[c], fmt::format("{}[{}]", field, c));
+            if (!number) return number.error();
+            set(size_t(index), c, number.value());
+        }
+    }
+    return values;
+}
+
+Result<std::vector<float>> resolve_params(const EffectDescriptor& d, const EffectRef& ref,
+                                          const std::string& scene_file) {
+    auto vectors = resolve_param_vectors(d, ref, scene_file);
+    if (!vectors) return vectors.error();
+    std::vector<float> scalars;
+    for (const auto& v : vectors.value()) scalars.push_back(v[0]);
+    return scalars;
+}
+
+}  // namespace acetate

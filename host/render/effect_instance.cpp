@@ -1,0 +1,274 @@
+// Load time of an effect instance: what the plugin is told about its floor (ABI 1.0 and 1.1
+// fields), its build(), and what its declarations need on the GPU (textures, targets in their
+// formats, compiled passes, uniforms, floor data, lights). Nothing here runs per frame.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "render/effect_pipelines.hpp"
+#include "render/effect_runtime.hpp"
+#include "render/renderer.hpp"
+#include "vulkan/vulkan_context.hpp"
+
+namespace acetate {
+namespace {
+
+// Everything AcetateFloorInfo points to, kept alive for the duration of build().
+struct FloorFacts {
+    std::string floor_name;
+    std::vector<AcetateLight> lights;           // ABI 1.0's view
+    std::vector<AcetateLightInfo> light_infos;  // 1.1: point lights, then the sun
+    std::vector<const AcetateLightInfo*> light_pointers;
+    std::vector<const char*> masks_present;
+    std::vector<float> params;         // x of each parameter (1.0)
+    std::vector<float> param_vectors;  // 4 per parameter (1.1)
+    AcetateFloorInfo info{};
+};
+
+void describe_floor(const SceneDesc& scene, int64_t floor, const EffectDescriptor& d,
+                    const ParamVectors& params, FloorFacts& facts) {
+    if (floor >= 0) {
+        const FloorDesc& f = scene.floors[size_t(floor)];
+        facts.floor_name = f.name;
+        for (const LightDesc& l : f.lights) {
+            facts.lights.push_back({{l.pos[0], l.pos[1]},
+                                    l.radius,
+                                    {l.color[0], l.color[1], l.color[2]},
+                                    l.intensity});
+            AcetateLightInfo info{sizeof(AcetateLightInfo), ACETATE_LIGHT_POINT};
+            info.pos[0] = l.pos[0], info.pos[1] = l.pos[1];
+            info.height = l.height;
+            info.radius = l.radius;
+            std::copy(l.color.begin(), l.color.end(), info.color);
+            info.intensity = l.intensity;
+            facts.light_infos.push_back(info);
+        }
+        if (f.sun) {
+            AcetateLightInfo info{sizeof(AcetateLightInfo), ACETATE_LIGHT_SUN};
+            const std::array<float, 3> direction = f.sun->direction();
+            std::copy(direction.begin(), direction.end(), info.direction);
+            std::copy(f.sun->color.begin(), f.sun->color.end(), info.color);
+            info.intensity = f.sun->intensity;
+            facts.light_infos.push_back(info);
+        }
+        for (const std::string& kind : d.masks)
+            if (std::any_of(f.tiles.begin(), f.tiles.end(),
+                            [&](const TileDesc& t) { return t.masks.count(kind) != 0; }))
+                facts.masks_present.push_back(kind.c_str());
+    }
+    for (const AcetateLightInfo& l : facts.light_infos) facts.light_pointers.push_back(&l);
+    for (const auto& v : params) {
+        facts.params.push_back(v[0]);
+        facts.param_vectors.insert(facts.param_vectors.end(), v.begin(), v.end());
+    }
+    AcetateFloorInfo& info = facts.info;
+    info.struct_size = sizeof(info);
+    info.floor_index = floor < 0 ? UINT32_MAX : uint32_t(floor);
+    info.floor_name = facts.floor_name.c_str();
+    info.canvas_width = scene.width;
+    info.canvas_height = scene.height;
+    info.lights = facts.lights.empty() ? nullptr : facts.lights.data();
+    info.light_count = uint32_t(facts.lights.size());
+    info.params = facts.params.data();
+    info.param_count = uint32_t(facts.params.size());
+    info.masks_present = facts.masks_present.empty() ? nullptr : facts.masks_present.data();
+    info.masks_present_count = uint32_t(facts.masks_present.size());
+    info.light_infos = facts.light_pointers.empty() ? nullptr : facts.light_pointers.data();
+    info.light_info_count = uint32_t(facts.light_pointers.size());
+    const PixelRect bounds = floor < 0 ? PixelRect{0, 0, scene.width, scene.height}
+                                       : floor_coverage_bounds(scene, size_t(floor));
+    info.coverage_bounds[0] = int32_t(bounds.x0), info.coverage_bounds[1] = int32_t(bounds.y0);
+    info.coverage_bounds[2] = int32_t(bounds.x1), info.coverage_bounds[3] = int32_t(bounds.y1);
+    info.floor_count = uint32_t(scene.floors.size());
+    info.param_vectors = facts.param_vectors.data();
+}
+
+// Why the device cannot render to and sample `format` (or blend onto it); "" when it can.
+std::string format_problem(VulkanContext& context, VkFormat floor_format, uint32_t format,
+                           bool blend) {
+    VkFormatProperties properties{};
+    vkGetPhysicalDeviceFormatProperties(context.physical_device(),
+                                        target_vk_format(format, floor_format), &properties);
+    VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT |
+                                  VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                  VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    if (blend) needed |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT;
+    if ((properties.optimalTilingFeatures & needed) == needed) return "";
+    return fmt::format("cannot be {} on device \"{}\"",
+                       blend ? "blended onto" : "rendered to and sampled linearly",
+                       context.device_name());
+}
+
+}  // namespace
+
+VkFormat target_vk_format(uint32_t format, VkFormat floor_format) {
+    switch (format) {
+        case ACETATE_FORMAT_R16F:
+            return VK_FORMAT_R16_SFLOAT;
+        case ACETATE_FORMAT_RG16F:
+            return VK_FORMAT_R16G16_SFLOAT;
+        case ACETATE_FORMAT_RGBA16F:
+            return VK_FORMAT_R16G16B16A16_SFLOAT;
+        case ACETATE_FORMAT_R32F:
+            return VK_FORMAT_R32_SFLOAT;
+        case ACETATE_FORMAT_RG32F:
+            return VK_FORMAT_R32G32_SFLOAT;
+        case ACETATE_FORMAT_RGBA32F:
+            return VK_FORMAT_R32G32B32A32_SFLOAT;
+        default:
+            return floor_format;
+    }
+}
+
+PixelRect floor_coverage_bounds(const SceneDesc& scene, size_t floor) {
+    PixelRect bounds;
+    for (const TileDesc& t : scene.floors.at(floor).tiles)
+        bounds = bounding_union(bounds, pixels_covered(t.rect.x, t.rect.y, t.rect.width,
+                                                       t.rect.height, scene.width, scene.height));
+    return bounds;
+}
+
+Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
+                                                               const SceneDesc& scene,
+                                                               const EffectRef& ref, int64_t floor,
+                                                               const InstanceSetup& setup) {
+    VulkanContext& context = renderer.context();
+    const std::string file = scene.file.string();
+    auto plugin = renderer.plugins().load(ref.plugin);
+    if (!plugin)
+        return make_error(plugin.error().code, fmt::format("{}: {}.plugin: {}", file, ref.where,
+                                                           plugin.error().message));
+    const EffectDescriptor& d = plugin.value()->descriptor;
+    const uint32_t wanted = floor < 0 ? ACETATE_SCOPE_GLOBAL : ACETATE_SCOPE_FLOOR;
+    if (d.scope != wanted)
+        return make_error(
+            ErrorCode::InvalidInput,
+            fmt::format("{}: {}.plugin: \"{}\" is a {} effect; list it in {}", file, ref.where,
+                        d.id, d.scope == ACETATE_SCOPE_GLOBAL ? "global" : "floor",
+                        d.scope == ACETATE_SCOPE_GLOBAL ? "global_effects" : "a floor's effects"));
+    auto params = resolve_param_vectors(d, ref, file);
+    if (!params) return params.error();
+
+    auto instance = std::make_unique<EffectInstance>();
+    instance->plugin = plugin.value();
+    instance->floor = floor;
+    instance->expanding = d.coverage == ACETATE_COVERAGE_EXPANDING;
+    instance->params = params.value();
+    instance->label = fmt::format(
+        "{}.{}", floor < 0 ? std::string("global") : fmt::format("floor{}", floor), d.id);
+
+    FloorFacts facts;
+    describe_floor(scene, floor, d, instance->params, facts);
+    GraphContext graph_context;
+    graph_context.masks = setup.masks;
+    graph_context.canvas_width = scene.width;
+    graph_context.canvas_height = scene.height;
+    graph_context.format_problem = [&](uint32_t format, bool blend) {
+        return format_problem(context, setup.format, format, blend);
+    };
+    auto graph = build_effect_graph(*instance->plugin, facts.info, instance->label, graph_context);
+    if (!graph)
+        return make_error(graph.error().code,
+                          fmt::format("{}: {}: {}", file, ref.where, graph.error().message));
+    for (const std::string& line : graph->log)
+        std::fprintf(stderr, "acetate: log: %s\n", line.c_str());
+    instance->reach = graph->reach;
+    for (const GraphPhase& phase : graph->phases) instance->phase_periods.push_back(phase.period);
+
+    for (const GraphTexture& t : graph->textures) {
+        auto image = GpuImage::create(
+            context, fmt::format("{}.{}", instance->label, t.name), t.width, t.height, setup.format,
+            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, false);
+        if (!image) return image.error();
+        ImageRGBA pixels(t.width, t.height);
+        pixels.pixels = t.rgba;
+        ACETATE_TRY(upload_image(context, image.value(), pixels));
+        instance->textures.emplace(t.name, std::move(image.value()));
+    }
+    std::map<std::string, VkFormat> output_formats{{"result", setup.format}};
+    for (const GraphTarget& t : graph->targets) {
+        const VkFormat format = target_vk_format(t.format, setup.format);
+        auto image = setup.targets->get(context, d.id, t, scene.width, scene.height, format);
+        if (!image) return image.error();
+        instance->targets[t.name] = image.value();
+        output_formats[t.name] = format;
+    }
+    EffectPipelines& pipelines = renderer.effect_pipelines();
+    for (const GraphPass& pass : graph->passes) {
+        EffectPassRuntime runtime;
+        runtime.label = instance->label + "." + pass.name;
+        runtime.inputs = pass.inputs;
+        runtime.output = pass.output;
+        runtime.blend = pass.blend;
+        runtime.instance_count = pass.instance_count;
+        runtime.instance_data_offset = pass.instance_data_offset;
+        for (uint32_t i = 0; i < pass.instance_count; ++i) {
+            const float* r = &graph->floor_data[pass.instance_data_offset + 4 * i];
+            runtime.instanced_pixels +=
+                pixels_covered(r[0], r[1], r[2], r[3], scene.width, scene.height).area();
+        }
+        std::shared_ptr<const std::vector<uint32_t>> spirv;
+        runtime.from_glsl = !pass.glsl.empty();
+        if (runtime.from_glsl) {
+            // The pool keys SPIR-V by the whole source, preamble included, and pipelines by the
+            // SPIR-V, so checked and unchecked variants never share a shader or a pipeline.
+            const std::string source =
+                effect_glsl_preamble(d, pass, graph->phases, setup.checked_builtins) + pass.glsl;
+            auto compiled = renderer.pool().spirv(runtime.label, ShaderStage::Fragment, source);
+            if (!compiled)
+                return make_error(
+                    compiled.error().code,
+                    fmt::format("{}: {}: {} ({})", file, ref.where, compiled.error().message,
+                                instance->plugin->file.string()));
+            spirv = compiled.value();
+        } else {
+            spirv = std::make_shared<const std::vector<uint32_t>>(pass.spirv);
+        }
+        auto pipeline =
+            pipelines.pipeline(*spirv, output_formats.at(pass.output), pass.blend, pass.kind);
+        if (!pipeline)
+            return make_error(pipeline.error().code,
+                              fmt::format("{}: {}: pass \"{}\": {}", file, ref.where, runtime.label,
+                                          pipeline.error().message));
+        runtime.pipeline = pipeline.value();
+        auto uniforms =
+            GpuBuffer::create(context, effect_uniform_bytes(d.params.size(), graph->phases.size()),
+                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        if (!uniforms) return uniforms.error();
+        runtime.uniforms = std::move(uniforms.value());
+        std::memset(runtime.uniforms.mapped(), 0, runtime.uniforms.size());
+        instance->passes.push_back(std::move(runtime));
+    }
+    if (!graph->floor_data.empty()) {
+        auto buffer = GpuBuffer::create(context, graph->floor_data.size() * sizeof(float),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        if (!buffer) return buffer.error();
+        std::memcpy(buffer->mapped(), graph->floor_data.data(),
+                    graph->floor_data.size() * sizeof(float));
+        instance->floor_data = std::move(buffer.value());
+        instance->has_floor_data = true;
+    }
+    if (!facts.light_infos.empty()) {
+        std::vector<EffectLightGpu> lights;
+        for (const AcetateLightInfo& l : facts.light_infos)
+            lights.push_back({{l.pos[0], l.pos[1]},
+                              l.height,
+                              l.radius,
+                              {l.color[0], l.color[1], l.color[2]},
+                              l.intensity,
+                              {l.direction[0], l.direction[1], l.direction[2]},
+                              l.kind});
+        auto buffer = GpuBuffer::create(context, lights.size() * sizeof(EffectLightGpu),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        if (!buffer) return buffer.error();
+        std::memcpy(buffer->mapped(), lights.data(), lights.size() * sizeof(EffectLightGpu));
+        instance->lights = std::move(buffer.value());
+        instance->has_lights = true;
+    }
+    return instance;
+}
+
+}  // namespace acetate
