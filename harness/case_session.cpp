@@ -66,6 +66,7 @@ Result<std::unique_ptr<Compositor>> load(const CaseContext& c, Session& s, const
     options.view = OutputView::FloorRgb;  // the active floor's whole target is drawn and kept
     options.poison = poison_colour(c.spec.poison);
     options.checked_builtins = how.checked_builtins;
+    options.ignore_declared_reach = how.ignore_declared_reach;
     return Compositor::load(*s.renderer, scene, options);
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <optional>
 
 #include "case_kinds.hpp"
@@ -14,6 +15,10 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+Result<CheckResult> check_reach(const CaseContext& c, Session& s, CaseWriter& w, const json& params,
+                                const std::string& name, const std::vector<FloorImages>& clipped,
+                                std::map<int64_t, ImageRGBA>& heat);
 
 // One scene of the case in a load of its own: the earlier frames, then each floor that
 // carries the plugin (or the composite) before and after the effects, checked. Returns the
@@ -62,7 +67,46 @@ Result<std::optional<SceneChecks>> check_scene(const CaseContext& c, Session& s,
     SceneChecks out;
     out.checks = check_contract(floors, c.plugin.is_expanding(), &out.heat,
                                 {{-1, nullptr, &composite.value()}});
+    if (!c.plugin.is_global() && (**comp).declares_reach()) {
+        auto reach = check_reach(c, s, w, params, name, floors, out.heat["reach"]);
+        if (!reach) return reach.error();
+        out.checks.push_back(std::move(reach.value()));
+    }
     return std::optional<SceneChecks>(std::move(out));
+}
+
+// An expanding floor effect that declared a reach (set_reach) is shaded only within its
+// floor's tiles grown by that reach. The same scene shaded over the whole canvas must give the
+// same floor, bit for bit: a difference is a pixel the effect changes past its declared reach,
+// which the host would silently cut off.
+Result<CheckResult> check_reach(const CaseContext& c, Session& s, CaseWriter& w, const json& params,
+                                const std::string& name, const std::vector<FloorImages>& clipped,
+                                std::map<int64_t, ImageRGBA>& heat) {
+    CheckAccumulator reach("reach",
+                           "nothing changes past the declared reach (same floor when shaded over "
+                           "the whole canvas)");
+    LoadOptions how;
+    how.ignore_declared_reach = true;
+    auto comp = load_layout(c, s, w, case_layout(c, params), name + ".unclipped", how);
+    if (!comp) return comp.error();
+    if (!*comp) return reach.finish();  // the load failure is recorded already
+    ACETATE_TRY(render_earlier_frames(**comp, c));
+    for (const FloorImages& floor : clipped) {
+        auto capture = capture_floor(**comp, uint32_t(floor.floor), c.spec.time);
+        if (!capture) return capture.error();
+        const ImageRGBA& whole = capture->output;
+        for (uint32_t y = 0; y < whole.height; ++y)
+            for (uint32_t x = 0; x < whole.width; ++x)
+                if (std::memcmp(whole.at(x, y), floor.output->at(x, y), 4 * sizeof(float)) != 0) {
+                    const float* v = whole.at(x, y);
+                    reach.violation(floor, x, y,
+                                    fmt::format("shaded over the whole canvas it is ({}, {}, {}, "
+                                                "{}): changed past the declared reach",
+                                                v[0], v[1], v[2], v[3]));
+                }
+    }
+    heat = reach.heat_maps();
+    return reach.finish();
 }
 
 bool any_failing(const std::vector<CheckResult>& checks) {

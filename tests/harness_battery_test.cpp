@@ -646,6 +646,25 @@ void undefined_only(const HarnessRun& run) {
         [](const json&, const json&) { return true; }, "; as compiled it gave (");
 }
 
+// declared_reach: the reach check runs (the plugin declares a reach) and passes everywhere.
+void reach_checked(const HarnessRun& run) {
+    ASSERT_TRUE(run.check_cases.count("reach")) << "the reach check never ran";
+    EXPECT_FALSE(run.check_cases.at("reach").empty());
+}
+
+// short_reach: where a floor does not cover the canvas, its glow past 1 pixel is cut off; the
+// failure says what the floor is when shaded over the whole canvas.
+void reach_cut_off(const HarnessRun& run) {
+    bool named = false;
+    for (const json* c : run.check_cases.at("reach")) {
+        const json* check = HarnessRun::find_check(*c, "reach");
+        if (check && (*check)["verdict"] == "FAIL")
+            named |= (*check)["message"].get<std::string>().find(
+                         "changed past the declared reach") != std::string::npos;
+    }
+    EXPECT_TRUE(named);
+}
+
 const std::vector<Expectation> kPlugins = {
     {"well_behaved", {}, {}},
     // In inputs/subnormal its neighbours' average of alpha 2^-24 (times strength) rounds to 0
@@ -697,6 +716,9 @@ const std::vector<Expectation> kPlugins = {
      result_partly_unwritten},
     {"hidden_nan", {"undefined-results"}, {}, false, undefined_only},
     {"inverted_smoothstep", {"undefined-results"}, {}, false, undefined_only},
+    // ABI 1.1: a declared reach is checked against the same floor shaded over the whole canvas.
+    {"declared_reach", {}, {}, false, reach_checked},
+    {"short_reach", {"reach"}, {}, false, reach_cut_off},
 };
 
 class HarnessBattery : public ::testing::TestWithParam<Expectation> {};

@@ -146,6 +146,7 @@ PixelRect Compositor::expansion_area(const SceneDesc& scene, size_t floor) const
     // Effects run one after another, so their reaches add up. One expanding effect without a
     // declared reach may change any pixel.
     const PixelRect canvas{0, 0, int64_t(scene.width), int64_t(scene.height)};
+    if (options_.ignore_declared_reach) return canvas;
     int64_t reach = 0;
     for (const auto& e : floor_effects_[floor]) {
         if (!e->expanding) continue;
@@ -156,6 +157,13 @@ PixelRect Compositor::expansion_area(const SceneDesc& scene, size_t floor) const
     if (bounds.empty()) return bounds;
     return intersect(canvas, PixelRect{bounds.x0 - reach, bounds.y0 - reach, bounds.x1 + reach,
                                        bounds.y1 + reach});
+}
+
+bool Compositor::declares_reach() const {
+    for (const auto& floor : floor_effects_)
+        for (const auto& e : floor)
+            if (e->expanding && e->reach) return true;
+    return false;
 }
 
 Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const SceneDesc& scene,

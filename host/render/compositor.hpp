@@ -58,6 +58,9 @@ struct CompositorOptions {
     // of "result" its passes shade holds it (outside that area "result" stays 0). NaN is fine.
     // Unset: no extra clear.
     std::optional<std::array<float, 4>> poison;
+    // The harness's reach check: shade expanding floors over the whole canvas, as if no effect
+    // had declared a reach (set_reach), so what an effect draws past its reach shows.
+    bool ignore_declared_reach = false;
     // GLSL passes are compiled with min, max, clamp and smoothstep that return NaN for a NaN
     // operand, and smoothstep also for edge0 >= edge1 (checked_builtins_glsl()), so the
     // harness's `finite` check sees results a driver may hide. Per scene rather than in
@@ -113,6 +116,8 @@ class Compositor {
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
     const LoadStats& load_stats() const { return load_stats_; }
+    // Whether some floor effect declared a reach (set_reach) that limits what is shaded.
+    bool declares_reach() const;
     // Effect passes of every instance (floors and global), by how they were given.
     EffectPassCounts effect_pass_counts() const;
     const FramePlan& last_plan() const { return last_plan_; }
