@@ -411,6 +411,13 @@ TEST_F(HarnessStages, BadInputIsOneLine) {
         const auto lines = test::nonempty_lines(run.err);
         ASSERT_EQ(lines.size(), 1u) << run.describe();
         EXPECT_TRUE(contains(lines[0], junk.string())) << lines[0];
+        // The loader's own reason, not nested in the describe child's failure nor dlopen's
+        // wrapping ("invalid ELF header): Bad file descriptor").
+        EXPECT_TRUE(contains(lines[0], junk.string() + ": not a shared library (it does not start "
+                                                       "with an ELF header)"))
+            << lines[0];
+        EXPECT_FALSE(contains(lines[0], "cannot describe the plugin")) << lines[0];
+        EXPECT_FALSE(contains(lines[0], "Bad file descriptor")) << lines[0];
         const json r = report(dir_ / "report-junk");
         ASSERT_TRUE(r.contains("error")) << r.dump(2);
         EXPECT_FALSE(r["error"].get<std::string>().empty()) << r.dump(2);

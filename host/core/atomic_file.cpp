@@ -12,6 +12,7 @@
 #include <regex>
 
 #include "core/file_descriptor.hpp"
+#include "core/temporary_guard.hpp"
 
 namespace acetate {
 namespace {
@@ -82,6 +83,7 @@ Result<bool> write_through_unnamed_temp(const fs::path& file, std::string_view b
     ACETATE_TRY(write_sync_close(fd, bytes, file));
     // The data is on disk; give it a name only now, for the instant before the rename.
     const fs::path temp = temp_sibling(file);
+    const TemporaryGuard guard(temp);  // a SIGINT/SIGTERM before the rename removes the name
     const std::string self = fmt::format("/proc/self/fd/{}", fd.get());
     if (::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, temp.c_str(), AT_SYMLINK_FOLLOW) != 0) {
         const int err = errno;
@@ -100,6 +102,7 @@ Result<bool> write_through_unnamed_temp(const fs::path& file, std::string_view b
 Result<void> write_through_named_temp(const fs::path& file, std::string_view bytes) {
     remove_dead_writers_temporaries(file);
     const fs::path temp = temp_sibling(file);
+    const TemporaryGuard guard(temp);  // a SIGINT/SIGTERM while it exists removes it
     FileDescriptor fd(::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
     if (fd.get() < 0)
         return io_error(file, fmt::format("cannot create a file in {}", folder_of(file).string()),

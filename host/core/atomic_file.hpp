@@ -7,8 +7,9 @@
 // killed mid-write, even by SIGKILL, leaves nothing), every write, the fsync and the close are
 // checked, and only then is the file given a temporary name and renamed over the target
 // (rename() within one folder is atomic on POSIX). Where the file system has no O_TMPFILE, a
-// named temporary `<stem>.tmp-<pid>-<n><ext>` is used instead; one left by a killed writer
-// (its process gone) is removed by the next write of the same target.
+// named temporary `<stem>.tmp-<pid>-<n><ext>` is used instead: a SIGINT or SIGTERM while it
+// exists removes it (TemporaryGuard), and one left by a SIGKILLed writer (its process gone) is
+// removed by the next write of the same target.
 //
 // Errors are one line: `<file>: <what failed>: <strerror>` (the target, never the temporary).
 

@@ -33,6 +33,11 @@ inline constexpr std::uint64_t kMaxRegistryFileBytes = std::uint64_t(64) << 20;
 // read as untrusted input.
 inline constexpr std::uint64_t kMaxHarnessFileBytes = std::uint64_t(64) << 20;
 
+// The largest image file read (a tile, a mask, a report's picture). A 16384x16384 RGBA image
+// (the largest canvas a device allows) is 1 GiB as uncompressed 32-bit float EXR; a file beyond
+// that is not an image the host could draw.
+inline constexpr std::uint64_t kMaxImageFileBytes = std::uint64_t(1) << 30;
+
 // The largest pipeline cache read: the driver's data for every pipeline the project makes is a
 // few MiB on real GPUs (32 bytes on lavapipe); a larger file is not ours.
 inline constexpr std::uint64_t kMaxPipelineCacheBytes = std::uint64_t(256) << 20;

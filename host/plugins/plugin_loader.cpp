@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <boost/dll/runtime_symbol_info.hpp>
@@ -12,6 +13,54 @@
 #include <sstream>
 
 namespace acetate {
+namespace {
+
+// A plugin must be a regular file starting with an ELF header, checked before dlopen: the
+// dynamic linker's own message for an image or a text file ("invalid ELF header", wrapped by
+// Boost.DLL in "load() failed (dlerror system message: ...): Bad file descriptor") names the
+// pinned /proc/self/fd path and two causes, one of them wrong.
+Result<void> check_shared_library(const std::filesystem::path& library, const std::string& where) {
+    const int fd = ::open(library.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0 && errno == ENOENT)
+        return make_error(ErrorCode::FileNotFound, fmt::format("{}: file not found", where));
+    if (fd < 0)
+        return make_error(ErrorCode::Io,
+                          fmt::format("{}: cannot open: {}", where, std::strerror(errno)));
+    struct stat st {};
+    char magic[4] = {};
+    const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
+    static constexpr char kElfMagic[4] = {0x7f, 'E', 'L', 'F'};
+    const bool elf = regular && ::pread(fd, magic, 4, 0) == 4 &&
+                     std::memcmp(magic, kElfMagic, sizeof(kElfMagic)) == 0;
+    ::close(fd);
+    if (!regular)
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: not a regular file, so not a plugin", where));
+    if (!elf)
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: not a shared library (it does not start with an ELF "
+                                      "header)",
+                                      where));
+    return {};
+}
+
+// What dlopen said, without Boost.DLL's wrapping and without the library's own path (the
+// caller names the file as the user gave it).
+std::string dlopen_reason(const std::string& what, const std::string& library) {
+    const std::string marker = "dlerror system message: ";
+    std::string reason = what;
+    if (const size_t at = what.find(marker); at != std::string::npos) {
+        reason = what.substr(at + marker.size());
+        if (const size_t end = reason.rfind("): "); end != std::string::npos)
+            reason.resize(end);
+        else if (!reason.empty() && reason.back() == ')')
+            reason.pop_back();
+    }
+    if (reason.rfind(library + ": ", 0) == 0) reason.erase(0, library.size() + 2);
+    return reason;
+}
+
+}  // namespace
 
 PluginLoader::PluginLoader(std::vector<std::filesystem::path> directories)
     : directories_(std::move(directories)) {}
@@ -63,6 +112,7 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::admit_and_open(
 Result<std::shared_ptr<LoadedPlugin>> PluginLoader::open_library(
     const std::filesystem::path& library, const std::filesystem::path& file) {
     const std::string where = file.string();
+    ACETATE_TRY(check_shared_library(library, where));
     auto plugin = std::make_shared<LoadedPlugin>();
     plugin->file = file;
     try {
@@ -71,7 +121,8 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::open_library(
     } catch (const std::exception& e) {
         // Boost.DLL's exceptions carry dlerror()'s text: missing file, missing symbol, ...
         return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: cannot load the plugin: {}", where, e.what()));
+                          fmt::format("{}: cannot load the plugin: {}", where,
+                                      dlopen_reason(e.what(), library.string())));
     }
     if (!plugin->library->has(ACETATE_ENTRY_POINT_NAME))
         return make_error(ErrorCode::InvalidInput,

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "scene/image_io.hpp"
 #include "vulkan/vulkan_context.hpp"
@@ -17,6 +18,17 @@ uint64_t count_violations(const ImageRGBA& image) {
         const bool finite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) &&
                             std::isfinite(p[3]);
         if (!finite || (p[3] <= 0.0f && (p[0] != 0.0f || p[1] != 0.0f || p[2] != 0.0f))) ++count;
+    }
+    return count;
+}
+
+// Texels a premultiplied colour cannot hold but a float file can: a negative channel, or alpha
+// above 1. They are drawn as stored (the tile stage does not clamp), so a person is told once.
+uint64_t count_out_of_range(const ImageRGBA& image) {
+    uint64_t count = 0;
+    for (size_t i = 0; i < image.pixels.size(); i += 4) {
+        const float* p = &image.pixels[i];
+        if (p[0] < 0.0f || p[1] < 0.0f || p[2] < 0.0f || p[3] < 0.0f || p[3] > 1.0f) ++count;
     }
     return count;
 }
@@ -71,6 +83,12 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
                                       pixels.value(), texture_format);
                 if (!texture) return in_scene(texture.error(), f, t, "image");
                 out->tile_texel_violations_ += count_violations(pixels.value());
+                if (const uint64_t odd = count_out_of_range(pixels.value()))
+                    std::fprintf(stderr,
+                                 "acetate: warning: %s: floors[%zu].tiles[%zu].image: %llu "
+                                 "texels have a negative channel or alpha above 1 (premultiplied "
+                                 "colour needs 0 <= rgb and 0 <= a <= 1); drawn as stored\n",
+                                 scene.file.c_str(), f, t, static_cast<unsigned long long>(odd));
                 found = by_path
                             .emplace(tile.image,
                                      Texture{texture.value().get(), fully_opaque(pixels.value()),

@@ -8,10 +8,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 
 #include "core/atomic_file.hpp"
+#include "core/input_file.hpp"
+#include "core/stderr_capture.hpp"
 
 namespace acetate {
 namespace {
@@ -43,12 +46,18 @@ struct DecodedPixels {
     bool straight_alpha = false;  // OpenImageIO returned unassociated values
 };
 
-// OpenImageIO premultiplies straight-alpha files (PNG, TGA, most TIFF) while reading, in the
-// encoded space, which is wrong for an sRGB-encoded image. Asking for unassociated alpha gets
-// the values as stored, so that decoding can happen before premultiplying.
-std::unique_ptr<OIIO::ImageInput> open_input(const fs::path& file) {
+// Opens `file` for decoding from `memory`, its contents as the project's one input reader read
+// them (a regular file, within the size limit), so the decoder never opens a path itself. The
+// few formats whose OpenImageIO reader cannot decode from memory open the path, already
+// checked. OpenImageIO premultiplies straight-alpha files (PNG, TGA, most TIFF) while reading,
+// in the encoded space, which is wrong for an sRGB-encoded image: asking for unassociated alpha
+// gets the values as stored, so that decoding can happen before premultiplying.
+std::unique_ptr<OIIO::ImageInput> open_input(const fs::path& file,
+                                             OIIO::Filesystem::IOMemReader& memory) {
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
+    if (auto input = OIIO::ImageInput::open(file.string(), &config, &memory)) return input;
+    (void)OIIO::geterror();  // a reader without memory input, or a bad file: the path tells
     return OIIO::ImageInput::open(file.string(), &config);
 }
 
@@ -200,14 +209,26 @@ void premultiplied_to_srgb8(const float in[4], uint8_t out[4]) {
 }
 
 Result<ImageRGBA> load_image(const fs::path& file, ImageRole role) {
-    std::error_code ec;
-    if (!fs::exists(file, ec)) return file_error(ErrorCode::FileNotFound, file, "file not found");
-    auto input = open_input(file);
-    if (!input) return file_error(ErrorCode::ImageDecode, file, OIIO::geterror());
-
+    auto bytes = read_input_file(file, kMaxImageFileBytes, "an image");
+    if (!bytes) return bytes.error();
+    OIIO::Filesystem::IOMemReader memory(bytes->data(), bytes->size());
+    // libpng and others print raw lines of their own before failing; the failure is reported
+    // below in one line, so what they printed is dropped then, and passed on as one line when
+    // the image decodes anyway (a warning).
+    StderrCapture library_output;
+    auto input = open_input(file, memory);
+    if (!input) {
+        const std::string why = OIIO::geterror();
+        library_output.finish();
+        return file_error(ErrorCode::ImageDecode, file, why);
+    }
     auto decoded = read_pixels(*input, file);
     input->close();
+    const std::string printed = library_output.finish();
     if (!decoded) return decoded.error();
+    if (!printed.empty())
+        std::fprintf(stderr, "acetate: warning: %s: the decoder said: %s\n", file.c_str(),
+                     one_line(printed).c_str());
     ACETATE_TRY(check_finite(decoded->image, file));
     // Masks are data (water depth, roughness...): values stay as stored.
     if (role == ImageRole::Colour) to_linear_premultiplied(*decoded);
