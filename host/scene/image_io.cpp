@@ -15,6 +15,7 @@
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
 #include "core/stderr_capture.hpp"
+#include "scene/exr_header_check.hpp"
 
 namespace acetate {
 namespace {
@@ -23,6 +24,10 @@ namespace fs = std::filesystem;
 
 // Far above any device limit; stops a corrupt header from asking for terabytes.
 constexpr int kMaxImageSide = 65536;
+// At most 2^26 pixels (8192x8192): decoding needs 32 bytes a pixel (the decoded floats and the
+// RGBA image), so 2 GiB at most, and a small compressed file declaring a huge image (a
+// decompression bomb) is refused before anything is allocated.
+constexpr int64_t kMaxImagePixels = int64_t(1) << 26;
 // The largest finite half-float; larger values would turn into Inf when written to EXR.
 constexpr float kHalfMax = 65504.0f;
 
@@ -86,6 +91,10 @@ Result<DecodedPixels> read_pixels(OIIO::ImageInput& input, const fs::path& file)
         return file_error(ErrorCode::ImageDecode, file,
                           fmt::format("image is {}x{}, larger than {} on a side", spec.width,
                                       spec.height, kMaxImageSide));
+    if (int64_t(spec.width) * spec.height > kMaxImagePixels)
+        return file_error(ErrorCode::ImageDecode, file,
+                          fmt::format("image is {}x{}, more than {} pixels (8192x8192)", spec.width,
+                                      spec.height, kMaxImagePixels));
 
     const int channels = std::min(spec.nchannels, 4);
     std::vector<float> source(size_t(spec.width) * spec.height * channels);
@@ -211,6 +220,7 @@ void premultiplied_to_srgb8(const float in[4], uint8_t out[4]) {
 Result<ImageRGBA> load_image(const fs::path& file, ImageRole role) {
     auto bytes = read_input_file(file, kMaxImageFileBytes, "an image");
     if (!bytes) return bytes.error();
+    ACETATE_TRY(check_exr_header(bytes.value(), file, kMaxImageSide));
     OIIO::Filesystem::IOMemReader memory(bytes->data(), bytes->size());
     // libpng and others print raw lines of their own before failing; the failure is reported
     // below in one line, so what they printed is dropped then, and passed on as one line when
