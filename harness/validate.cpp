@@ -325,11 +325,12 @@ Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugi
         !outcome.timed_out && !outcome.signal && outcome.exit_code == 0 && fs::exists(out, ec);
     if (!described) {
         const std::string why = describe_failure(outcome, tail_of_file(job.log, 4000));
-        // The host's own refusal already names the plugin file and what is wrong with it.
-        if (why.rfind(plugin.string() + ": ", 0) == 0)
-            return make_error(ErrorCode::InvalidInput, why);
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: cannot describe the plugin: {}", plugin.string(), why));
+        // The host's own refusal names the plugin file already: name it once, not nested.
+        std::string reason = why;
+        if (reason.rfind(plugin.string() + ": ", 0) == 0)
+            reason.erase(0, plugin.string().size() + 2);
+        return make_error(ErrorCode::InvalidInput, fmt::format("{}: cannot describe the plugin: {}",
+                                                               plugin.string(), reason));
     }
     auto parsed = read_json(out);
     if (!parsed) return parsed.error();
