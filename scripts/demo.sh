@@ -16,7 +16,7 @@ mkdir -p "$out"
 # The committed sign-offs (validation/signoffs.json) are imported by validate; the automated
 # stages re-run on the binaries just built, which then reach VALIDATED in the build tree's
 # registry ($build/validation/registry.json), the one `acetate render` reads.
-for plugin in lighting bloom; do
+for plugin in lighting bloom water specular; do
   echo "== Validating $plugin (acetate-harness, every case in its own process)"
   ACETATE_VALIDATION=1 "$build/harness/acetate-harness" validate "$build/plugins/$plugin.so" \
     --report "$out/validation/$plugin"

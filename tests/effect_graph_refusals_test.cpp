@@ -144,10 +144,17 @@ INSTANTIATE_TEST_SUITE_P(
         RefusalCase{"TextureInfoShort",
                     [](Host& h) {
                         const AcetateTextureInfo t{offsetof(AcetateTextureInfo, rgba), "ramp", 1,
-                                                   1, &kOne};
+                                                   1, &kOne, 0};
                         h.note(h.api->add_texture_info(h.graph, &t));
                     },
                     at("add_texture_info with a missing or short AcetateTextureInfo")},
+        RefusalCase{"TextureInfoUnknownFormat",
+                    [](Host& h) {
+                        const AcetateTextureInfo t{sizeof(AcetateTextureInfo), "ramp", 1, 1, &kOne,
+                                                   9};
+                        h.note(h.api->add_texture_info(h.graph, &t));
+                    },
+                    at("texture \"ramp\": unknown format 9")},
         // 1.1: declare_target_info
         RefusalCase{"TargetInfoUnknownFormat", [](Host& h) { h.target_info("t", 7); },
                     at("target \"t\": unknown format 7")},

@@ -35,7 +35,7 @@ TEST(EffectGraph, ADeclaredGraphIsRecordedAsDeclared) {
     EXPECT_EQ(g.targets[0].format, ACETATE_FORMAT_FLOOR);
     EXPECT_EQ(g.targets[1].divisor, 4096u);
     ASSERT_EQ(g.textures.size(), 1u);
-    EXPECT_EQ(g.textures[0].rgba, std::vector<float>(8, 0.25f));
+    EXPECT_EQ(g.textures[0].texels, std::vector<float>(8, 0.25f));
     EXPECT_EQ(g.floor_data, (std::vector<float>{1, 2, 3, 4}));
     EXPECT_EQ(g.log, std::vector<std::string>{at("built")});
     ASSERT_EQ(g.passes.size(), 5u);
@@ -49,6 +49,45 @@ TEST(EffectGraph, ADeclaredGraphIsRecordedAsDeclared) {
     EXPECT_EQ(g.passes[4].instance_count, 1u);
     EXPECT_TRUE(g.phases.empty());
     EXPECT_FALSE(g.reach.has_value());
+}
+
+// A build() that declares nothing is a pass-through the host drops; declaring anything without
+// a pass that writes "result" is still refused.
+TEST(EffectGraph, DeclaringNothingIsAPassThroughAndDeclaringHalfIsRefused) {
+    Fake fake;
+    auto nothing = fake.build([](Host&) {});
+    ASSERT_TRUE(nothing) << nothing.error().message;
+    EXPECT_TRUE(nothing->passes.empty());
+    auto half = fake.build([](Host& h) { h.texture("ramp", 1, 1); });
+    ASSERT_FALSE(half);
+    EXPECT_EQ(half.error().message, at("no pass writes \"result\""));
+}
+
+// 1.1: a texture in a one- or two-channel format holds that many floats per texel; a plugin
+// whose AcetateTextureInfo ends before `format` gets the floor's RGBA.
+TEST(EffectGraph, TextureFormatsSetTheFloatsPerTexel) {
+    Fake fake;
+    const std::vector<float> data{1, 2, 3, 4, 5, 6, 7, 8};
+    auto graph = fake.build([&](Host& h) {
+        for (const auto& [name, format] :
+             {std::pair{"r", ACETATE_FORMAT_R16F}, std::pair{"rg", ACETATE_FORMAT_RG32F}}) {
+            const AcetateTextureInfo t{sizeof(AcetateTextureInfo), name, 2, 1, data.data(), format};
+            h.note(h.api->add_texture_info(h.graph, &t));
+        }
+        const AcetateTextureInfo old{
+            offsetof(AcetateTextureInfo, format), "old", 2, 1, data.data(), ACETATE_FORMAT_R16F};
+        h.note(h.api->add_texture_info(h.graph, &old));
+        h.pass({});
+    });
+    ASSERT_TRUE(graph) << graph.error().message;
+    const auto& t = graph->textures;
+    ASSERT_EQ(t.size(), 3u);
+    EXPECT_EQ(t[0].format, ACETATE_FORMAT_R16F);
+    EXPECT_EQ(t[0].texels, (std::vector<float>{1, 2}));
+    EXPECT_EQ(t[1].channels, 2u);
+    EXPECT_EQ(t[1].texels, (std::vector<float>{1, 2, 3, 4}));
+    EXPECT_EQ(t[2].format, ACETATE_FORMAT_FLOOR) << "format past the plugin's struct is not read";
+    EXPECT_EQ(t[2].texels, data);
 }
 
 // A plugin built against ABI 1.0 passes the shorter AcetatePassDesc: accepted, and the 1.1
@@ -88,7 +127,6 @@ TEST(EffectGraph, ABuildWithNoPassWritingResultIsRefused) {
     Fake fake;
     EXPECT_EQ(refusal(fake.build([](Host& h) { h.target("a").pass({.output = "a"}); })),
               at("no pass writes \"result\""));
-    EXPECT_EQ(refusal(fake.build([](Host&) {})), at("no pass writes \"result\""));
 }
 
 // Instanced quads read their rects from floor_data, which build() may set after the pass: the

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "specular_art.hpp"  // the masks acetate.specular reads
+
 namespace {
 
 struct Col {
@@ -212,14 +214,13 @@ void drawGround(Img& g, Img& mask) {
         if (y > kQuay.y1 - 5)
             st = Col{0.48f, 0.46f, 0.43f} * (fract(x / 9) < 0.12f ? 0.7f : 1.f);  // kerb
         land = mix(land, st, cover(dq, 0.6f));
-        // water: shallow to deep, ripples, foam at the shore
-        float depth = smooth(0, 80, -w);
-        Col water = mix({0.30f, 0.58f, 0.62f}, {0.07f, 0.25f, 0.42f}, depth);
-        float rip = std::sin(x * 0.06f + y * 0.13f + 9 * fbm(x * 0.012f, y * 0.02f, 9));
-        water = water * (0.94f + 0.06f * rip) + Col{0.12f, 0.14f, 0.14f} *
-                                                    smooth(0.93f, 0.99f, rip) *
-                                                    fbm(x * 0.05f, y * 0.05f, 10, 2);
-        water = mix(water, {0.85f, 0.92f, 0.90f}, 0.55f * (1 - smooth(0.5f, 4.5f, -w)));
+        // Under the water, only its bed: wet sand giving way to dark silt, pebbles and weed.
+        // acetate.water (see the scene) adds the water itself: depth, waves, caustics, foam.
+        float depth = smooth(0, 70, -w);
+        float pebbles = fbm(x * 0.11f, y * 0.11f, 9, 3), weed = fbm(x * 0.02f, y * 0.035f, 10);
+        Col water = mix(Col{0.62f, 0.55f, 0.40f}, Col{0.30f, 0.28f, 0.22f}, depth) *
+                    (0.85f + 0.3f * pebbles);
+        water = mix(water, Col{0.22f, 0.30f, 0.16f}, 0.5f * depth * smooth(0.55f, 0.7f, weed));
         float wa = cover(w, 0.8f);
         Col c = mix(land, water, wa);
         // pier and bridge: shadow on the water, then planks
@@ -486,9 +487,13 @@ int main(int argc, char** argv) {
     ok &= save(dir / "house_a.png", drawWalls(256, 192, a, 21));
     ok &= save(dir / "roof_a.png", drawRoof(256, 192, ra, 31));
     ok &= save(dir / "house_b.png", drawWalls(176, 240, b, 22));
-    ok &= save(dir / "roof_b.png", drawRoof(176, 240, rb, 32));
+    const Img roof_b = drawRoof(176, 240, rb, 32);
+    ok &= save(dir / "roof_b.png", roof_b);
     ok &= save(dir / "house_c.png", drawWalls(192, 112, c, 23));
-    ok &= save(dir / "roof_c.png", drawRoof(192, 112, rc, 33));
+    const Img roof_c = drawRoof(192, 112, rc, 33);
+    ok &= save(dir / "roof_c.png", roof_c);
+    ok &= write_specular_art(dir, {water.p, water.w, water.h}, {roof_b.p, roof_b.w, roof_b.h},
+                             {roof_c.p, roof_c.w, roof_c.h});
 
     // Tree crowns.
     ok &= save(dir / "tree_a.png", drawTrees(128, 128, {{60, 60, 44, 41}}));

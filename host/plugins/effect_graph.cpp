@@ -234,19 +234,24 @@ AcetateStatus set_floor_data(AcetateGraph* g, const float* data, uint32_t count)
 }
 
 AcetateStatus add_texture(AcetateGraph* g, const char* texture_name, uint32_t width,
-                          uint32_t height, const float* rgba) {
+                          uint32_t height, const float* texels, uint32_t format) {
     if (!texture_name) return refuse(g, fmt::format("{}: add_texture with no name", g->label));
     const std::string name = texture_name;
     const std::string what = fmt::format("{}: texture \"{}\"", g->label, name);
     if (!is_simple_name(name)) return refuse(g, what + ": name must match [a-z][a-z0-9_]*");
     for (const GraphTexture& earlier : g->graph.textures)
         if (earlier.name == name) return refuse(g, what + ": declared twice");
-    if (width == 0 || height == 0 || width > 16384 || height > 16384 || !rgba)
+    if (width == 0 || height == 0 || width > 16384 || height > 16384 || !texels)
         return refuse(
             g, fmt::format("{}: {}x{} (1..16384 per side, data not NULL)", what, width, height));
-    GraphTexture texture{name, width, height, {}};
-    texture.rgba.assign(rgba, rgba + size_t(width) * height * 4);
-    if (!std::all_of(texture.rgba.begin(), texture.rgba.end(),
+    if (format_name(format).empty())
+        return refuse(g, fmt::format("{}: unknown format {}", what, format));
+    if (format != ACETATE_FORMAT_FLOOR && g->context->format_problem)
+        if (std::string why = g->context->format_problem(format, false); !why.empty())
+            return refuse(g, fmt::format("{}: format {} {}", what, format_name(format), why));
+    GraphTexture texture{name, width, height, {}, format, format_channels(format)};
+    texture.texels.assign(texels, texels + size_t(width) * height * texture.channels);
+    if (!std::all_of(texture.texels.begin(), texture.texels.end(),
                      [](float v) { return std::isfinite(v); }))
         return refuse(g, what + ": holds a value that is not finite");
     g->graph.textures.push_back(std::move(texture));
@@ -256,7 +261,7 @@ AcetateStatus add_texture(AcetateGraph* g, const char* texture_name, uint32_t wi
 AcetateStatus add_texture(AcetateGraph* g, const AcetateTextureDesc* t) {
     if (!g) return ACETATE_ERROR_INVALID_ARGUMENT;
     if (!t) return refuse(g, fmt::format("{}: add_texture with no texture", g->label));
-    return add_texture(g, t->name, t->width, t->height, t->rgba);
+    return add_texture(g, t->name, t->width, t->height, t->rgba, ACETATE_FORMAT_FLOOR);
 }
 
 AcetateStatus add_texture_info(AcetateGraph* g, const AcetateTextureInfo* t) {
@@ -265,7 +270,11 @@ AcetateStatus add_texture_info(AcetateGraph* g, const AcetateTextureInfo* t) {
         return refuse(g, fmt::format("{}: add_texture_info with a missing or short "
                                      "AcetateTextureInfo",
                                      g->label));
-    return add_texture(g, t->name, t->width, t->height, t->rgba);
+    // format was appended: a plugin whose struct ends before it means the floor's RGBA.
+    const bool has_format =
+        t->struct_size >= offsetof(AcetateTextureInfo, format) + sizeof(uint32_t);
+    return add_texture(g, t->name, t->width, t->height, t->rgba,
+                       has_format ? t->format : ACETATE_FORMAT_FLOOR);
 }
 
 AcetateStatus read_mask(AcetateGraph* g, const char* kind_name, AcetateMaskImage* mask) {
@@ -392,6 +401,19 @@ std::string input_variable(const std::string& input) {
     return name;
 }
 
+uint32_t format_channels(uint32_t format) {
+    switch (format) {
+        case ACETATE_FORMAT_R16F:
+        case ACETATE_FORMAT_R32F:
+            return 1;
+        case ACETATE_FORMAT_RG16F:
+        case ACETATE_FORMAT_RG32F:
+            return 2;
+        default:
+            return 4;
+    }
+}
+
 std::string format_name(uint32_t format) {
     switch (format) {
         case ACETATE_FORMAT_FLOOR:
@@ -427,6 +449,12 @@ Result<EffectGraph> build_effect_graph(const LoadedPlugin& plugin, const Acetate
                           fmt::format("{}: build failed with status {}: {}", label, status,
                                       why ? why : "(no message)"));
     }
+    // Nothing declared at all: the instance has nothing to do on this floor (an effect that
+    // needs a mask the floor lacks), and the host skips it; "result" is then "previous".
+    const EffectGraph& declared = graph.graph;
+    if (declared.passes.empty() && declared.targets.empty() && declared.textures.empty() &&
+        declared.floor_data.empty() && declared.phases.empty())
+        return std::move(graph.graph);
     if (!graph.written.count("result"))
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("{}: no pass writes \"result\"", label));

@@ -46,8 +46,13 @@ struct GraphPhase {
 struct GraphTexture {
     std::string name;
     uint32_t width = 0, height = 0;
-    std::vector<float> rgba;
+    std::vector<float> texels;  // `channels` floats per texel
+    uint32_t format = ACETATE_FORMAT_FLOOR;
+    uint32_t channels = 4;  // 1, 2 or 4, as the format has
 };
+
+// Channels of an ACETATE_FORMAT_* (FLOOR: 4).
+uint32_t format_channels(uint32_t format);
 
 struct EffectGraph {
     std::vector<GraphTarget> targets;

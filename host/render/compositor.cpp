@@ -130,6 +130,9 @@ Result<SceneMasks> Compositor::create_effects(const SceneDesc& scene) {
         for (const EffectRef& ref : scene.floors[f].effects) {
             auto instance = create_effect_instance(renderer_, scene, ref, int64_t(f), setup);
             if (!instance) return instance.error();
+            // An instance that declared nothing (water on a floor without water) is dropped:
+            // the floor then renders exactly as if the scene had not listed the effect.
+            if (instance.value()->passes.empty()) continue;
             floor_effects_[f].push_back(std::move(instance.value()));
         }
     }
@@ -137,6 +140,7 @@ Result<SceneMasks> Compositor::create_effects(const SceneDesc& scene) {
     for (const EffectRef& ref : scene.global_effects) {
         auto instance = create_effect_instance(renderer_, scene, ref, -1, setup);
         if (!instance) return instance.error();
+        if (instance.value()->passes.empty()) continue;
         global_effects_.push_back(std::move(instance.value()));
     }
     return masks;
@@ -195,8 +199,12 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
     auto masks = out->create_effects(scene);
     if (!masks) return masks.error();
 
-    auto resources = SceneResources::load(context, scene, options.format, out->options_.mask_kinds,
-                                          masks.value());
+    // A floor whose effects all declared nothing is drawn as if it listed none.
+    SceneDesc planned = scene;
+    for (size_t f = 0; f < planned.floors.size(); ++f)
+        if (out->floor_effects_[f].empty()) planned.floors[f].effects.clear();
+    auto resources = SceneResources::load(context, planned, options.format,
+                                          out->options_.mask_kinds, masks.value());
     if (!resources) return resources.error();
     out->resources_ = std::move(resources.value());
     ACETATE_TRY(out->create_targets(scene));

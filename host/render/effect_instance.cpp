@@ -179,13 +179,12 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
     for (const GraphPhase& phase : graph->phases) instance->phase_periods.push_back(phase.period);
 
     for (const GraphTexture& t : graph->textures) {
-        auto image = GpuImage::create(
-            context, fmt::format("{}.{}", instance->label, t.name), t.width, t.height, setup.format,
-            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, false);
+        auto image =
+            GpuImage::create(context, fmt::format("{}.{}", instance->label, t.name), t.width,
+                             t.height, target_vk_format(t.format, setup.format),
+                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, false);
         if (!image) return image.error();
-        ImageRGBA pixels(t.width, t.height);
-        pixels.pixels = t.rgba;
-        ACETATE_TRY(upload_image(context, image.value(), pixels));
+        ACETATE_TRY(upload_texels(context, image.value(), t.texels.data(), t.channels));
         instance->textures.emplace(t.name, std::move(image.value()));
     }
     std::map<std::string, VkFormat> output_formats{{"result", setup.format}};

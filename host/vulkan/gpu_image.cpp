@@ -14,7 +14,13 @@ uint32_t bytes_per_pixel(VkFormat format) {
     switch (format) {
         case VK_FORMAT_R8G8B8A8_UNORM:
             return 4;
+        case VK_FORMAT_R16_SFLOAT:
+            return 2;
+        case VK_FORMAT_R16G16_SFLOAT:
+        case VK_FORMAT_R32_SFLOAT:
+            return 4;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
+        case VK_FORMAT_R32G32_SFLOAT:
             return 8;
         case VK_FORMAT_R32G32B32A32_SFLOAT:
             return 16;
@@ -261,35 +267,40 @@ Result<void> upload_image(VulkanContext& context, GpuImage& image, const ImageRG
     if (pixels.width != image.width() || pixels.height != image.height())
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("upload to \"{}\": size mismatch", image.name()));
-    const size_t count = size_t(image.width()) * image.height() * 4;
+    return upload_texels(context, image, pixels.pixels.data(), 4);
+}
+
+Result<void> upload_texels(VulkanContext& context, GpuImage& image, const float* texels,
+                           uint32_t channels) {
+    const size_t count = size_t(image.width()) * image.height() * channels;
     const uint32_t bpp = bytes_per_pixel(image.format());
-    auto staging =
-        GpuBuffer::create(context, VkDeviceSize(count / 4) * bpp, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    const bool half = image.format() == VK_FORMAT_R16_SFLOAT ||
+                      image.format() == VK_FORMAT_R16G16_SFLOAT ||
+                      image.format() == VK_FORMAT_R16G16B16A16_SFLOAT;
+    const bool unorm = image.format() == VK_FORMAT_R8G8B8A8_UNORM;
+    // Each format holds bpp bytes per texel: 2 per half, 4 per float, 1 per unorm channel.
+    if (bpp == 0 || bpp != channels * (half ? 2u : unorm ? 1u : 4u))
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("upload to \"{}\": {} channels do not fit format {}",
+                                      image.name(), channels, format_name(image.format())));
+    auto staging = GpuBuffer::create(context, VkDeviceSize(image.width()) * image.height() * bpp,
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     if (!staging) return staging.error();
-    const float* src = pixels.pixels.data();
-    switch (image.format()) {
-        case VK_FORMAT_R32G32B32A32_SFLOAT:
-            std::memcpy(staging->mapped(), src, count * sizeof(float));
-            break;
-        case VK_FORMAT_R16G16B16A16_SFLOAT: {
-            auto* dst = static_cast<uint16_t*>(staging->mapped());
-            // Finite values beyond the half range would become Inf; the contract allows none,
-            // so they saturate at +-65504 (the largest half).
-            for (size_t i = 0; i < count; ++i)
-                dst[i] = Imath::half(std::clamp(src[i], -65504.0f, 65504.0f)).bits();
-            break;
+    const float* src = texels;
+    if (half) {
+        auto* dst = static_cast<uint16_t*>(staging->mapped());
+        // Finite values beyond the half range would become Inf; the contract allows none, so
+        // they saturate at +-65504 (the largest half).
+        for (size_t i = 0; i < count; ++i)
+            dst[i] = Imath::half(std::clamp(src[i], -65504.0f, 65504.0f)).bits();
+    } else if (unorm) {
+        auto* dst = static_cast<uint8_t*>(staging->mapped());
+        for (size_t i = 0; i < count; ++i) {
+            const float v = src[i] < 0 ? 0 : src[i] > 1 ? 1 : src[i];
+            dst[i] = uint8_t(v * 255.0f + 0.5f);
         }
-        case VK_FORMAT_R8G8B8A8_UNORM: {
-            auto* dst = static_cast<uint8_t*>(staging->mapped());
-            for (size_t i = 0; i < count; ++i) {
-                const float v = src[i] < 0 ? 0 : src[i] > 1 ? 1 : src[i];
-                dst[i] = uint8_t(v * 255.0f + 0.5f);
-            }
-            break;
-        }
-        default:
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("upload to \"{}\": unsupported format", image.name()));
+    } else {
+        std::memcpy(staging->mapped(), src, count * sizeof(float));
     }
     return context.submit_and_wait([&](VkCommandBuffer cmd) {
         image.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);

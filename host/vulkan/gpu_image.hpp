@@ -82,13 +82,17 @@ class GpuBuffer {
     VkDeviceSize size_ = 0;
 };
 
-// Bytes per pixel of the colour formats the host uses (RGBA8, RGBA16F, RGBA32F).
+// Bytes per pixel of the colour formats the host uses (RGBA8, and R, RG, RGBA in 16F and 32F).
 uint32_t bytes_per_pixel(VkFormat format);
 const char* format_name(VkFormat format);
 
 // Copies `pixels` (RGBA float, same size as the image) into `image`, converting to its format
 // (RGBA16F rounds to nearest half), and leaves it in SHADER_READ_ONLY_OPTIMAL.
 Result<void> upload_image(VulkanContext& context, GpuImage& image, const ImageRGBA& pixels);
+// The same for any of the float formats with 1, 2 or 4 channels: width * height texels of
+// `channels` floats (the image's channel count, else InvalidInput).
+Result<void> upload_texels(VulkanContext& context, GpuImage& image, const float* texels,
+                           uint32_t channels);
 
 // Reads a colour image back as RGBA float; leaves the image in its previous layout.
 Result<ImageRGBA> read_back_image(VulkanContext& context, GpuImage& image);

@@ -311,13 +311,20 @@ typedef struct AcetateTextureDesc {
     const float* rgba; /* width * height * 4 floats, all finite; copied */
 } AcetateTextureDesc;
 
-/* 1.1: AcetateTextureDesc with struct_size first. */
+/* 1.1: AcetateTextureDesc with struct_size first, and a format: a one- or two-channel texture
+ * (a distance field, a direction) takes a quarter or half the memory of RGBA. */
 typedef struct AcetateTextureInfo {
     uint32_t struct_size; /* sizeof(AcetateTextureInfo) as the plugin was built */
     const char* name;
     uint32_t width;
     uint32_t height;
+    /* width * height texels of as many floats as the format has channels (1 for R16F and
+     * R32F, 2 for RG16F and RG32F, else 4), all finite; copied. */
     const float* rgba;
+    /* ACETATE_FORMAT_*, as for targets; FLOOR (0): RGBA in the floor's format. A host that
+     * reads a struct_size ending before this field takes FLOOR. The format must be one the
+     * device can render to and sample linearly, as for a target. */
+    uint32_t format;
 } AcetateTextureInfo;
 
 /* Host-owned handle through which build() declares an instance's work. Opaque. */

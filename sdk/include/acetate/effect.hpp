@@ -285,15 +285,31 @@ class Graph {
               "");
     }
     void log(const std::string& message) { host_.log(graph_, message.c_str()); }
-    // A texture for "texture.<name>" inputs: width * height premultiplied RGBA floats.
+    // A texture for "texture.<name>" inputs: width * height premultiplied RGBA floats; 1.1: or
+    // in a format of one or two channels (R16F, RG16F, R32F, RG32F: 1 or 2 floats per texel)
+    // or 32-bit RGBA, for data the floor's format would waste memory or precision on.
     void texture(const std::string& name, uint32_t width, uint32_t height,
-                 std::span<const float> rgba) {
-        if (rgba.size() != size_t(width) * height * 4)
-            throw std::invalid_argument("texture \"" + name + "\": expected width*height*4 floats");
+                 std::span<const float> texels, uint32_t format = ACETATE_FORMAT_FLOOR) {
+        const size_t channels = format == ACETATE_FORMAT_R16F || format == ACETATE_FORMAT_R32F ? 1
+                                : format == ACETATE_FORMAT_RG16F || format == ACETATE_FORMAT_RG32F
+                                    ? 2
+                                    : 4;
+        if (texels.size() != size_t(width) * height * channels)
+            throw std::invalid_argument("texture \"" + name + "\": expected width*height*" +
+                                        std::to_string(channels) + " floats");
+        if (format != ACETATE_FORMAT_FLOOR) {
+            require(
+                ACETATE_SDK_HAS(host_, AcetateHostApi, add_texture_info) && host_.add_texture_info,
+                "add_texture_info (texture formats)");
+            const AcetateTextureInfo info{
+                sizeof(AcetateTextureInfo), name.c_str(), width, height, texels.data(), format};
+            check(host_.add_texture_info(graph_, &info), "add_texture_info", name);
+            return;
+        }
         // add_texture was appended to the table: a host whose table ends before it lacks it.
         require(ACETATE_SDK_HAS(host_, AcetateHostApi, add_texture) && host_.add_texture,
                 "add_texture");
-        const AcetateTextureDesc desc{name.c_str(), width, height, rgba.data()};
+        const AcetateTextureDesc desc{name.c_str(), width, height, texels.data()};
         check(host_.add_texture(graph_, &desc), "add_texture", name);
     }
     // 1.1: how far past the floor's coverage bounds a coverage-expanding effect changes pixels;
