@@ -152,9 +152,16 @@ INSTANTIATE_TEST_SUITE_P(
                     [](Host& h) {
                         const AcetateTextureInfo t{sizeof(AcetateTextureInfo), "ramp", 1, 1, &kOne,
                                                    9};
-                        h.note(h.api->add_texture_info(h.graph, &t));
+                        h.note(h.api->add_texture_format(h.graph, &t));
                     },
                     at("texture \"ramp\": unknown format 9")},
+        RefusalCase{"TextureFormatShort",
+                    [](Host& h) {
+                        const AcetateTextureInfo t{offsetof(AcetateTextureInfo, format), "ramp", 1,
+                                                   1, &kOne, 0};
+                        h.note(h.api->add_texture_format(h.graph, &t));
+                    },
+                    at("add_texture_format with a missing or short AcetateTextureInfo")},
         // 1.1: declare_target_info
         RefusalCase{"TargetInfoUnknownFormat", [](Host& h) { h.target_info("t", 7); },
                     at("target \"t\": unknown format 7")},

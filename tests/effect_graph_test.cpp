@@ -63,8 +63,8 @@ TEST(EffectGraph, DeclaringNothingIsAPassThroughAndDeclaringHalfIsRefused) {
     EXPECT_EQ(half.error().message, at("no pass writes \"result\""));
 }
 
-// 1.1: a texture in a one- or two-channel format holds that many floats per texel; a plugin
-// whose AcetateTextureInfo ends before `format` gets the floor's RGBA.
+// 1.1: a texture in a one- or two-channel format holds that many floats per texel; only
+// add_texture_format reads the format (add_texture_info never did).
 TEST(EffectGraph, TextureFormatsSetTheFloatsPerTexel) {
     Fake fake;
     const std::vector<float> data{1, 2, 3, 4, 5, 6, 7, 8};
@@ -72,11 +72,11 @@ TEST(EffectGraph, TextureFormatsSetTheFloatsPerTexel) {
         for (const auto& [name, format] :
              {std::pair{"r", ACETATE_FORMAT_R16F}, std::pair{"rg", ACETATE_FORMAT_RG32F}}) {
             const AcetateTextureInfo t{sizeof(AcetateTextureInfo), name, 2, 1, data.data(), format};
-            h.note(h.api->add_texture_info(h.graph, &t));
+            h.note(h.api->add_texture_format(h.graph, &t));
         }
-        const AcetateTextureInfo old{
-            offsetof(AcetateTextureInfo, format), "old", 2, 1, data.data(), ACETATE_FORMAT_R16F};
-        h.note(h.api->add_texture_info(h.graph, &old));
+        const AcetateTextureInfo info{sizeof(AcetateTextureInfo), "info", 2, 1, data.data(),
+                                      ACETATE_FORMAT_R16F};
+        h.note(h.api->add_texture_info(h.graph, &info));
         h.pass({});
     });
     ASSERT_TRUE(graph) << graph.error().message;
@@ -86,7 +86,7 @@ TEST(EffectGraph, TextureFormatsSetTheFloatsPerTexel) {
     EXPECT_EQ(t[0].texels, (std::vector<float>{1, 2}));
     EXPECT_EQ(t[1].channels, 2u);
     EXPECT_EQ(t[1].texels, (std::vector<float>{1, 2, 3, 4}));
-    EXPECT_EQ(t[2].format, ACETATE_FORMAT_FLOOR) << "format past the plugin's struct is not read";
+    EXPECT_EQ(t[2].format, ACETATE_FORMAT_FLOOR) << "add_texture_info does not read format";
     EXPECT_EQ(t[2].texels, data);
 }
 

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "art_math.hpp"
 #include "specular_art.hpp"  // the masks acetate.specular reads
 
 namespace {
@@ -27,16 +28,6 @@ struct Col {
 };
 Col mix(Col a, Col b, float t) {
     return a * (1 - t) + b * t;
-}
-float clamp01(float v) {
-    return std::clamp(v, 0.f, 1.f);
-}
-float smooth(float e0, float e1, float v) {
-    float t = clamp01((v - e0) / (e1 - e0));
-    return t * t * (3 - 2 * t);
-}
-float fract(float v) {
-    return v - std::floor(v);
 }
 
 // ---- deterministic noise ---------------------------------------------------------------

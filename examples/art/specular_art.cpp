@@ -23,18 +23,10 @@
 #include <cstdio>
 #include <string>
 
+#include "art_math.hpp"
+
 namespace {
 
-float clamp01(float v) {
-    return std::clamp(v, 0.f, 1.f);
-}
-float smooth(float e0, float e1, float v) {
-    float t = clamp01((v - e0) / (e1 - e0));
-    return t * t * (3 - 2 * t);
-}
-float fract(float v) {
-    return v - std::floor(v);
-}
 // A fixed-seed integer hash to [0, 1), and smooth value noise from it.
 float hash01(int x, int y, uint32_t seed) {
     uint32_t h = uint32_t(x) * 0x8da6b343u ^ uint32_t(y) * 0xd8163841u ^ seed * 0xcb1ab31fu;

@@ -270,11 +270,18 @@ AcetateStatus add_texture_info(AcetateGraph* g, const AcetateTextureInfo* t) {
         return refuse(g, fmt::format("{}: add_texture_info with a missing or short "
                                      "AcetateTextureInfo",
                                      g->label));
-    // format was appended: a plugin whose struct ends before it means the floor's RGBA.
-    const bool has_format =
-        t->struct_size >= offsetof(AcetateTextureInfo, format) + sizeof(uint32_t);
-    return add_texture(g, t->name, t->width, t->height, t->rgba,
-                       has_format ? t->format : ACETATE_FORMAT_FLOOR);
+    // Never reads `format`: a host that had add_texture_info before formats existed did not
+    // either, so the format goes through add_texture_format, whose presence says it is read.
+    return add_texture(g, t->name, t->width, t->height, t->rgba, ACETATE_FORMAT_FLOOR);
+}
+
+AcetateStatus add_texture_format(AcetateGraph* g, const AcetateTextureInfo* t) {
+    if (!g) return ACETATE_ERROR_INVALID_ARGUMENT;
+    if (!t || t->struct_size < offsetof(AcetateTextureInfo, format) + sizeof(uint32_t))
+        return refuse(g, fmt::format("{}: add_texture_format with a missing or short "
+                                     "AcetateTextureInfo",
+                                     g->label));
+    return add_texture(g, t->name, t->width, t->height, t->rgba, t->format);
 }
 
 AcetateStatus read_mask(AcetateGraph* g, const char* kind_name, AcetateMaskImage* mask) {
@@ -390,6 +397,9 @@ const AcetateHostApi kHostApi = {
     },
     [](AcetateGraph* g, const char* name, double period) noexcept {
         return guarded([&] { return declare_phase(g, name, period); });
+    },
+    [](AcetateGraph* g, const AcetateTextureInfo* t) noexcept {
+        return guarded([&] { return add_texture_format(g, t); });
     }};
 
 }  // namespace

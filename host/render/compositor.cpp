@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <set>
 
 #include "render/renderer.hpp"
 #include "vulkan/vulkan_context.hpp"
@@ -199,10 +200,22 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
     auto masks = out->create_effects(scene);
     if (!masks) return masks.error();
 
-    // A floor whose effects all declared nothing is drawn as if it listed none.
+    // A floor whose effects all declared nothing is drawn as if it listed none, and only the
+    // masks a remaining instance reads go to the GPU: a dropped instance costs nothing there.
     SceneDesc planned = scene;
-    for (size_t f = 0; f < planned.floors.size(); ++f)
+    std::set<std::string> kinds_read;
+    for (size_t f = 0; f < planned.floors.size(); ++f) {
         if (out->floor_effects_[f].empty()) planned.floors[f].effects.clear();
+        std::set<std::string> floor_kinds;
+        for (const auto& e : out->floor_effects_[f])
+            floor_kinds.insert(e->plugin->descriptor.masks.begin(),
+                               e->plugin->descriptor.masks.end());
+        std::erase_if(masks->floors[f], [&](const auto& m) { return !floor_kinds.count(m.first); });
+        kinds_read.insert(floor_kinds.begin(), floor_kinds.end());
+    }
+    for (const auto& e : out->global_effects_)
+        kinds_read.insert(e->plugin->descriptor.masks.begin(), e->plugin->descriptor.masks.end());
+    out->options_.mask_kinds = kinds_read;
     auto resources = SceneResources::load(context, planned, options.format,
                                           out->options_.mask_kinds, masks.value());
     if (!resources) return resources.error();

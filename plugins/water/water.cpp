@@ -4,7 +4,8 @@
 // What is built at load, once per floor that has water (build() runs once per floor per load,
 // so a floor switch builds nothing and the first frame does no CPU work):
 //   texture.shore   the distance from each water pixel to the shore (distance_field.hpp),
-//                   covering only the water's bounding box, at one cell per DF_DIVISOR pixels
+//                   covering only the water's bounding box, at one cell per field_divisor
+//                   pixels, in R16F
 //   texture.waves   the tileable wave field and its caustic pattern (wave_field.hpp)
 // and one pass over the floor, which shades water and copies everything else. A floor without
 // water, or whose water mask is empty, declares nothing: the host skips the instance, so the

@@ -36,14 +36,15 @@ float water_cover(ivec2 p) {
 // Scene pixels from pos to the shore (0 on land), filtered between cells.
 float shore_distance(vec2 pos) {
     vec2 cell = pos / FIELD_DIVISOR - FIELD_ORIGIN;
-    return max(texture(texture_shore, cell * acetate_size_texture_shore.zw).r, 0.0);
+    // Explicit level 0: this runs after early returns, where implicit derivatives are undefined.
+    return max(textureLod(texture_shore, cell * acetate_size_texture_shore.zw, 0.0).r, 0.0);
 }
 
 // One wave layer: slope (xy, in the layer's frame), height (z), caustic density (w). The layer
 // moves `direction` (whole tiles) per period of its phase, so it wraps without a jump.
 vec4 wave_layer(vec2 layer_pos, float scale, vec2 direction, float phase) {
     vec2 tile = fract(layer_pos / scale + direction * (phase * ANIMATE));
-    return texture(texture_waves, (tile * kWaveTexels + 0.5) / (kWaveTexels + 1.0));
+    return textureLod(texture_waves, (tile * kWaveTexels + 0.5) / (kWaveTexels + 1.0), 0.0);
 }
 
 struct Surface {
@@ -98,7 +99,10 @@ vec3 refracted_bed(vec2 pos, vec4 c, vec2 offset, float dist) {
             vec2 wxy = mix(1.0 - t, t, vec2(corner));
             float w = wxy.x * wxy.y;
             ivec2 q = base + corner;
-            if (w <= 0.0 || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, canvas)))
+            // A weight under 1/4096 is left out: nothing a half float shows, and the sum of
+            // what counts then stays far from the subnormals (alpha >= c.a / 8192 below).
+            if (w < 1.0 / 4096.0 || any(lessThan(q, ivec2(0))) ||
+                any(greaterThanEqual(q, canvas)))
                 continue;
             if (water_cover(q) <= 0.5) continue;
             vec4 s = texelFetch(previous, q, 0);
@@ -107,8 +111,8 @@ vec3 refracted_bed(vec2 pos, vec4 c, vec2 offset, float dist) {
             alpha += w * s.a;
         }
     }
-    // Brought to this pixel's alpha. alpha > 0 whenever a texel counted (each has a >= c.a / 2
-    // > 0); with none, the pixel keeps its own bed.
+    // Brought to this pixel's alpha. alpha >= c.a / 8192 > 0 whenever a texel counted (weight
+    // >= 1/4096, a >= c.a / 2), so c.a / alpha <= 8192; with none, the pixel keeps its bed.
     return alpha > 0.0 ? rgb * (c.a / alpha) : c.rgb;
 }
 
@@ -121,7 +125,7 @@ void light_surface(vec2 pos, vec3 n, out vec3 diffuse, out vec3 specular) {
     float a = max(param_roughness, kMinPerceptualRoughness);
     a *= a;
     float a2 = a * a;
-    float NoV = max(n.z, 1e-4);  // the view is (0, 0, 1); n.z >= 0.94 here anyway
+    float NoV = max(n.z, 1e-4);  // the view is (0, 0, 1); n.z >= 0.58 even at waves = 4
     int points = 0;
     for (int i = 0; i < acetate_light_count; ++i) {
         AcetateLight l = acetate_lights[i];
@@ -129,7 +133,7 @@ void light_surface(vec2 pos, vec3 n, out vec3 diffuse, out vec3 specular) {
         vec3 radiance;
         if (l.kind == ACETATE_LIGHT_SUN) {
             to_light = l.direction;
-            radiance = l.color * l.intensity;
+            radiance = min(l.color * l.intensity, vec3(kHalfMax));
         } else {
             if (points >= MAX_LIGHTS) continue;
             ++points;
@@ -139,7 +143,8 @@ void light_surface(vec2 pos, vec3 n, out vec3 diffuse, out vec3 specular) {
             float r = len / l.radius;
             if (r >= 1.0) continue;
             float window = 1.0 - r * r;  // the lighting effect's falloff, over 3D distance
-            radiance = l.color * (l.intensity * window * window);
+            // Capped like the sun, so no sum below reaches infinity (64 lights * 65504).
+            radiance = min(l.color * l.intensity, vec3(kHalfMax)) * (window * window);
             // A light at the pixel at height 0 is taken as straight above, never normalised.
             to_light = len > 1e-4 ? d / len : vec3(0.0, 0.0, 1.0);
         }
@@ -198,7 +203,7 @@ void main() {
     vec3 n = normalize(vec3(-kMaxSlope * amplitude * s.slope, 1.0));
     vec3 diffuse, specular;
     light_surface(pos, n, diffuse, specular);
-    vec3 light = param_ambient + diffuse;
+    vec3 light = min(param_ambient + diffuse, vec3(kHalfMax));  // finite: no 0 * inf below
     vec3 color = bed * mix(param_shallow_color, param_deep_color, depth);
     color = mix(color, param_murk_color * light * c.a, param_murk * depth);
 

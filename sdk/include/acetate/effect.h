@@ -321,9 +321,10 @@ typedef struct AcetateTextureInfo {
     /* width * height texels of as many floats as the format has channels (1 for R16F and
      * R32F, 2 for RG16F and RG32F, else 4), all finite; copied. */
     const float* rgba;
-    /* ACETATE_FORMAT_*, as for targets; FLOOR (0): RGBA in the floor's format. A host that
-     * reads a struct_size ending before this field takes FLOOR. The format must be one the
-     * device can render to and sample linearly, as for a target. */
+    /* ACETATE_FORMAT_*, as for targets; FLOOR (0): RGBA in the floor's format. Read only by
+     * add_texture_format (add_texture_info takes RGBA in the floor's format, as it did before
+     * this field existed). The format must be one the device can render to and sample
+     * linearly, as for a target. */
     uint32_t format;
 } AcetateTextureInfo;
 
@@ -365,6 +366,11 @@ typedef struct AcetateHostApi {
      * double precision, so an animation with that period is as smooth at 10^5 s as at 1 s.
      * Errors: bad or duplicate name, a period not finite or not > 0, more than 64 phases. */
     AcetateStatus (*declare_phase)(AcetateGraph* graph, const char* name, double period_seconds);
+    /* add_texture_info reading `format` too (1, 2 or 4 floats per texel as the format has
+     * channels). A host whose table ends before this entry does not read formats: check the
+     * table's struct_size before calling. Errors: those of add_texture, a struct_size ending
+     * before `format`, an unknown format or one the device cannot use. */
+    AcetateStatus (*add_texture_format)(AcetateGraph* graph, const AcetateTextureInfo* texture);
 } AcetateHostApi;
 
 /*

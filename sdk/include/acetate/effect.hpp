@@ -298,12 +298,14 @@ class Graph {
             throw std::invalid_argument("texture \"" + name + "\": expected width*height*" +
                                         std::to_string(channels) + " floats");
         if (format != ACETATE_FORMAT_FLOOR) {
-            require(
-                ACETATE_SDK_HAS(host_, AcetateHostApi, add_texture_info) && host_.add_texture_info,
-                "add_texture_info (texture formats)");
+            // Only a host that has add_texture_format reads the format (an older one would
+            // read width * height * 4 floats from this shorter array).
+            require(ACETATE_SDK_HAS(host_, AcetateHostApi, add_texture_format) &&
+                        host_.add_texture_format,
+                    "add_texture_format (texture formats)");
             const AcetateTextureInfo info{
                 sizeof(AcetateTextureInfo), name.c_str(), width, height, texels.data(), format};
-            check(host_.add_texture_info(graph_, &info), "add_texture_info", name);
+            check(host_.add_texture_format(graph_, &info), "add_texture_format", name);
             return;
         }
         // add_texture was appended to the table: a host whose table ends before it lacks it.
