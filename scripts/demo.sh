@@ -16,7 +16,7 @@ mkdir -p "$out"
 # The committed sign-offs (validation/signoffs.json) are imported by validate; the automated
 # stages re-run on the binaries just built, which then reach VALIDATED in the build tree's
 # registry ($build/validation/registry.json), the one `acetate render` reads.
-for plugin in lighting bloom water specular; do
+for plugin in lighting bloom water specular fire; do
   echo "== Validating $plugin (acetate-harness, every case in its own process)"
   ACETATE_VALIDATION=1 "$build/harness/acetate-harness" validate "$build/plugins/$plugin.so" \
     --report "$out/validation/$plugin"
@@ -31,6 +31,16 @@ for view in normal floor-alpha accum-alpha floor-rgb violations isolation; do
     --stats "$out/$view.stats.json"
 done
 "$build/host/acetate" render "$scene" -o "$out/normal.exr" --floors all
+
+# A second of the ground floor in 12 steps of 1/12 s: the fire, the water and the embers move
+# (every frame is a pure function of its time, so any step renders directly).
+echo "== Animation: floor 0, t = 0 .. 11/12 s, into $out/animation/"
+mkdir -p "$out/animation"
+for i in $(seq 0 11); do
+  t=$(awk -v i="$i" 'BEGIN {printf "%.6f", i / 12}')
+  "$build/host/acetate" render "$scene" -o "$out/animation/frame_$(printf '%03d' "$i").png" \
+    --floor 0 --time "$t" >/dev/null
+done
 floors=$(cd "$out" && ls normal.floor*.png | sed -E 's/normal\.floor([0-9]+)\.png/\1/' | sort -n | tr '\n' ' ')
 
 # One picture to look at: every view (rows) for every floor (columns).
@@ -48,6 +58,7 @@ echo "Done in $((SECONDS - start)) s. Images are in $out:"
 echo "  normal.floorN.png      the scene seen from floor N (also normal.floorN.exr: half, linear)"
 echo "  <view>.floorN.png      debug views: floor-alpha accum-alpha floor-rgb violations isolation"
 echo "  <view>.stats.json      load and per-frame statistics"
+echo "  animation/frame_NNN.png  floor 0 over one second, 12 frames"
 echo "  validation/<plugin>/index.html   the harness's reports (report.json beside each)"
 echo "Registry: $build/validation/VALIDATION-REGISTRY.md"
 if [ -f "$out/contact-sheet.png" ]; then

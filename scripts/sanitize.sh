@@ -20,7 +20,7 @@ echo "== Configuring and building the sanitizer build in $build (clang, ASan + U
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DACETATE_SANITIZE=ON -DACETATE_BUILD_FUZZERS=ON -DACETATE_BUILD_BENCHMARKS=OFF >/dev/null
 fuzzers=(scene registry pipeline_cache image)
-targets=(acetate_unit_tests acetate_cli_tests lighting bloom)
+targets=(acetate_unit_tests acetate_cli_tests lighting bloom water specular fire)
 for f in "${fuzzers[@]}"; do targets+=("fuzz_$f"); done
 cmake --build "$build" -j"$(nproc)" $(printf -- '--target %s ' "${targets[@]}")
 

@@ -59,7 +59,7 @@ class WaterTest : public RenderTest {
         add_tile(scene, floor, tile, {0, 0, int32_t(scene.width), int32_t(scene.height)});
         if (cover)
             scene.floors[floor].tiles[0].masks["water"] =
-                write_exr(dir() / fmt::format("water{}.exr", floor),
+                write_exr(dir() / fmt::format("water{}.exr", masks_++),
                           mask_image(*cover, tile.width, tile.height));
         if (!params.is_null()) {
             EffectRef ref;
@@ -71,6 +71,8 @@ class WaterTest : public RenderTest {
         }
         return floor;
     }
+
+    int masks_ = 0;  // every mask gets its own file, whatever scene and floor it is for
 
     // The floor's own pixels after its effects (read back exactly as the GPU holds them).
     ImageRGBA floor_after_effects(Compositor& compositor, uint32_t floor, double time = 0.0) {

@@ -235,6 +235,34 @@ void drawGround(Img& g, Img& mask) {
     });
 }
 
+// Two braziers at the quay's ends and a campfire by the pond: iron bowls (or a ring of stones)
+// holding coals, and the fire mask acetate.fire burns from (white on the coals).
+void drawFires(Img& g, Img& mask) {
+    struct Fire {
+        float x, y, r;
+        bool stones;
+    };
+    const Fire fires[] = {{536, 490, 7, false}, {889, 490, 7, false}, {318, 560, 9, true}};
+    g.paint([&](float x, float y, Px px) {
+        for (const Fire& f : fires) {
+            const float d = std::hypot(x - f.x, y - f.y);
+            const Col rim =
+                f.stones ? Col{0.45f, 0.43f, 0.40f} * (0.8f + 0.3f * hash(int(x), int(y), 31))
+                         : Col{0.16f, 0.15f, 0.15f};
+            px.over(rim, cover(d - f.r - 3, 0.8f));
+            px.over(Col{0.10f, 0.06f, 0.04f} +
+                        Col{0.35f, 0.10f, 0.02f} * fbm(x * 0.5f, y * 0.5f, 32, 2),
+                    cover(d - f.r, 0.6f));
+        }
+    });
+    mask.paint([&](float x, float y, Px px) {
+        float m = 0;
+        for (const Fire& f : fires)
+            m = std::max(m, cover(std::hypot(x - f.x, y - f.y) - f.r + 1, 0.8f));
+        px.q[0] = m;  // grey: the mask value is kept in the red channel
+    });
+}
+
 // ---- floor 1: walls -----------------------------------------------------------------------
 enum class Floor { Wood, Flag, Checker, Boards };
 struct Room {
@@ -432,9 +460,11 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(dir);
     bool ok = true;
 
-    Img ground(1280, 720), water(1280, 720);
+    Img ground(1280, 720), water(1280, 720), fire(1280, 720);
     drawGround(ground, water);
-    ok &= save(dir / "ground.png", ground) && save(dir / "ground_Water.png", water, true);
+    drawFires(ground, fire);
+    ok &= save(dir / "ground.png", ground) && save(dir / "ground_Water.png", water, true) &&
+          save(dir / "ground_Fire.png", fire, true);
 
     // Building data, in image pixels: rooms (floor boxes), walls, courtyard holes, crates.
     // clang-format off
