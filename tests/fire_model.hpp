@@ -73,7 +73,8 @@ inline Particle particle_at(double time, const Emitter& e, int kind, uint32_t sl
     const float u = scaled + offset;
     const float cycle = std::floor(u);
     const double age = u - cycle;
-    const auto h = pcg4d({p.seed, e.index, id, uint32_t(cycle) + 1u});
+    const uint32_t cycles = uint32_t(std::lround(kClockPeriod * kRate[kind]));  // lives per period
+    const auto h = pcg4d({p.seed, e.index, id, uint32_t(cycle) % cycles + 1u});
     const double r[4] = {unit(h[0]), unit(h[1]), unit(h[2]), unit(h[3])};
     const double life = kLife[kind];
     const double jx = (r[0] - 0.5) * p.spread, jy = (r[1] - 0.5) * 0.5 * p.spread;

@@ -105,7 +105,8 @@ TEST_F(FireTest, EveryParticleIsWhereTheReplicaSaysAndNothingElseChanges) {
     ASSERT_TRUE(compositor);
     // The cell [48, 54) x [42, 48) is cell (8, 7): its centre (51, 45), strength 1, emitter 0.
     const model::Emitter emitter{51, 45, 1, 1, 0};
-    for (double time : {0.0, 0.37, 1.9, 1e5}) {
+    // Around the 2048 s clock's wrap too: nothing may jump there.
+    for (double time : {0.0, 0.37, 1.9, 1e5, 2047.999, 2048.001}) {
         const std::string what = fmt::format("t = {}", time);
         const ImageRGBA out = floor_after_effects(*compositor, floor, time);
         ASSERT_EQ(out.width, kW) << what;
@@ -143,6 +144,61 @@ TEST_F(FireTest, EveryParticleIsWhereTheReplicaSaysAndNothingElseChanges) {
             ++seen;
         }
         EXPECT_GE(seen, 3) << what;
+    }
+}
+
+// The replica itself: across the clock's wrap every particle that is mid-life moves by well
+// under a pixel in 2 ms (a jump there would be a new life's draws).
+TEST(FireModel, NothingJumpsWhereTheClockWraps) {
+    const model::Emitter emitter{51, 45, 1, 1, 0};
+    for (uint32_t seed : {1u, 7u, 12345u}) {
+        model::Params p = test_model();
+        p.seed = seed;
+        const auto before = model::particles_at(2047.999, emitter, {2, 8, 3}, p);
+        const auto after = model::particles_at(2048.001, emitter, {2, 8, 3}, p);
+        for (size_t i = 0; i < before.size(); ++i) {
+            if (before[i].envelope <= 0.01 || after[i].envelope <= 0.01) continue;  // born or died
+            EXPECT_LT(std::hypot(before[i].x - after[i].x, before[i].y - after[i].y), 0.5)
+                << "seed " << seed << " particle " << i;
+        }
+    }
+}
+
+// A small tile with fast embers, smoke and a strong wind against it: the particles reach far
+// past the tile, and the declared reach must hold all of them (the same pixels as a render
+// that shades the whole canvas).
+TEST_F(FireTest, TheDeclaredReachHoldsEveryParticle) {
+    // Embers arc up to 190 px and 120 px aside, smoke drifts 190 px left: a reach of about 230
+    // px, less than the canvas to the tile's left.
+    constexpr uint32_t kW = 600, kH = 400;
+    constexpr int kX = 450, kY = 300;
+    SceneDesc scene = make_scene(kW, kH);
+    nlohmann::json params = test_params();
+    params.update({{"ember_speed", 150.0},
+                   {"embers", 2.0},
+                   {"smoke", 0.8},
+                   {"smoke_height", 60.0},
+                   {"wind", {-40.0, 10.0}},
+                   {"glow", 1.0}});
+    const uint32_t floor = fire_floor(scene, solid(24, 8, {0.3f, 0.3f, 0.3f, 1}),
+                                      block_mask(24, 8, 4, 0, 20, 8), {kX, kY, 24, 8}, params);
+    CompositorOptions whole;
+    whole.ignore_declared_reach = true;
+    auto declared = load(scene), everywhere = load(scene, whole);
+    ASSERT_TRUE(declared && everywhere);
+    for (double time : {0.0, 0.37, 1.9, 1e5}) {
+        FrameStats a_stats, b_stats;
+        const ImageRGBA a = floor_after_effects(*declared, floor, time, &a_stats);
+        const ImageRGBA b = floor_after_effects(*everywhere, floor, time, &b_stats);
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0)
+            << "t = " << time;
+        EXPECT_LT(a_stats.pixels_shaded, b_stats.pixels_shaded) << "the reach saves pixels";
+        int outside = 0;  // particles really do leave the tile
+        for (uint32_t y = 0; y < kH; ++y)
+            for (uint32_t x = 0; x < kW; ++x)
+                outside += (x < kX || x >= kX + 24 || y < kY || y >= kY + 8) && a.at(x, y)[3] > 0;
+        EXPECT_GT(outside, 20) << "t = " << time;
     }
 }
 

@@ -20,11 +20,13 @@ struct Emitter {
     float outdoor = 1;   // the outdoors mask there (1 without one): scales the wind
 };
 
-// Cells of `spacing` scene pixels whose mean fire coverage is at least 1/20 become emitters,
-// in row-major order. `cover` and `outdoors` are canvas-sized (outdoors may be empty).
+// Cells of `spacing` scene pixels holding at least 1/20 of a full `base` x `base` cell of fire
+// become emitters, in row-major order; strength is the fire per pixel, counting at most
+// base x base pixels, so cells wider than the base (a mask with too much fire) keep a thin
+// line alight and as strong. `cover` and `outdoors` are canvas-sized (outdoors may be empty).
 inline std::vector<Emitter> find_emitters(std::span<const float> cover,
                                           std::span<const float> outdoors, int width, int height,
-                                          int spacing) {
+                                          int spacing, int base) {
     std::vector<Emitter> out;
     const int s = std::max(1, spacing);
     for (int cy = 0; cy * s < height; ++cy)
@@ -36,8 +38,9 @@ inline std::vector<Emitter> find_emitters(std::span<const float> cover,
                     const double c = cover[size_t(y) * width + x];
                     sum += c, sx += c * (x + 0.5), sy += c * (y + 0.5);
                 }
-            if (count == 0 || sum < 0.05 * count) continue;
-            Emitter e{float(sx / sum), float(sy / sum), float(sum / count), 1.0f};
+            const double full = std::min<double>(count, double(base) * base);
+            if (count == 0 || sum < 0.05 * full) continue;
+            Emitter e{float(sx / sum), float(sy / sum), float(std::min(1.0, sum / full)), 1.0f};
             if (!outdoors.empty()) {
                 const int px = std::clamp(int(e.x), 0, width - 1);
                 const int py = std::clamp(int(e.y), 0, height - 1);
@@ -49,10 +52,13 @@ inline std::vector<Emitter> find_emitters(std::span<const float> cover,
 }
 
 // The glow: each emitter's strength splatted onto a grid of one cell per `divisor` pixels and
-// blurred by a Gaussian of `radius` scene pixels (sigma = radius / 2), then scaled so its peak
-// is 1. One float per cell, for an R16F texture. Separable, so linear in cells times radius.
+// blurred by a Gaussian of `radius` scene pixels (sigma = radius / 2, at least 2 px; cut at
+// 3 sigma), then divided by a fixed reference: the centre of a full-strength fire filling a
+// disc of radius / 4 with emitters every `spacing` pixels reads 1. Light adds up, so a bigger
+// fire glows more, capped at 4; a fire elsewhere on the floor changes nothing here. One float
+// per cell, for an R16F texture. Separable, so linear in cells times radius.
 inline std::vector<float> glow_map(const std::vector<Emitter>& emitters, int cells_x, int cells_y,
-                                   int divisor, float radius) {
+                                   int divisor, float radius, int spacing) {
     std::vector<float> grid(size_t(cells_x) * cells_y, 0.0f);
     for (const Emitter& e : emitters) {
         const int x = std::clamp(int(e.x / divisor), 0, cells_x - 1);
@@ -80,9 +86,14 @@ inline std::vector<float> glow_map(const std::vector<Emitter>& emitters, int cel
     };
     blur(true);
     blur(false);
-    const float peak = *std::max_element(grid.begin(), grid.end());
-    if (peak > 0)
-        for (float& v : grid) v /= peak;
+    // The reference, in the blur's units (a splatted emitter peaks at 1): emitters 1/spacing^2
+    // per px^2 under a Gaussian of sigma px over a disc of radius R gives
+    // 2 pi sigma^2 / spacing^2 * (1 - exp(-R^2 / (2 sigma^2))).
+    const double sigma_px = sigma * divisor, disc = radius / 4.0;
+    const double reference =
+        std::max(1.0, 2 * 3.141592653589793 * sigma_px * sigma_px / (double(spacing) * spacing) *
+                          (1 - std::exp(-disc * disc / (2 * sigma_px * sigma_px))));
+    for (float& v : grid) v = float(std::min(4.0, v / reference));
     return grid;
 }
 

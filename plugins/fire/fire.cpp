@@ -117,7 +117,7 @@ struct Box {
 // pixel to spare: particles.frag keeps inside it by construction (the same bounds on each term).
 Box reach_box(Kind kind, const Emitter& e, const Floor& floor, float wind_factor, int spacing) {
     const auto wind = floor[kWind];
-    const double spread = spacing;  // a particle starts within its emitter's cell
+    const double spread = spacing;  // a particle starts within +-spacing/2 of its emitter
     const double life = kLife[kind];
     // Wind moves a particle by wind * factor * time; smoke drifts 1.5 times as far.
     const double drift = (kind == kSmokeKind ? 1.5 : 1.0) * life * wind_factor;
@@ -183,10 +183,12 @@ class Fire final : public Effect {
                               std::clamp(out.data[i * 4 + 3], 0.0f, 1.0f);
         }
         // A mask with more fire than kMaxEmitters cells: wider cells, until it fits.
-        int spacing = floor[kSpacing];
+        // Fire is measured against the preset's cell, so wider cells keep thin fire alight.
+        const int base = floor[kSpacing];
+        int spacing = base;
         std::vector<Emitter> emitters;
         for (;; spacing *= 2) {
-            emitters = acetate::fire::find_emitters(cover, outdoors, width, height, spacing);
+            emitters = acetate::fire::find_emitters(cover, outdoors, width, height, spacing, base);
             if (emitters.size() <= kMaxEmitters) break;
         }
         if (emitters.empty()) return;  // an empty fire mask: nothing to do
@@ -216,10 +218,10 @@ class Fire final : public Effect {
 
         const int cells_x = (width + kGlowDivisor - 1) / kGlowDivisor;
         const int cells_y = (height + kGlowDivisor - 1) / kGlowDivisor;
-        graph.texture(
-            "glow", uint32_t(cells_x), uint32_t(cells_y),
-            acetate::fire::glow_map(emitters, cells_x, cells_y, kGlowDivisor, floor[kGlowRadius]),
-            ACETATE_FORMAT_R16F);
+        graph.texture("glow", uint32_t(cells_x), uint32_t(cells_y),
+                      acetate::fire::glow_map(emitters, cells_x, cells_y, kGlowDivisor,
+                                              floor[kGlowRadius], spacing),
+                      ACETATE_FORMAT_R16F);
         graph.phase("clock", kClockPeriod);
         graph.phase("flicker_a", 0.37);
         graph.phase("flicker_b", 0.53);
@@ -231,7 +233,9 @@ class Fire final : public Effect {
         const char* names[3] = {"SMOKE", "FLAME", "EMBER"};
         for (int kind = 0; kind < 3; ++kind)
             defines += std::string("#define ") + names[kind] + "_LIFE " + literal(kLife[kind]) +
-                       "\n#define " + names[kind] + "_RATE " + literal(1.0 / kLife[kind]) + "\n";
+                       "\n#define " + names[kind] + "_RATE " + literal(1.0 / kLife[kind]) +
+                       "\n#define " + names[kind] + "_CYCLES " +
+                       std::to_string(std::lround(kClockPeriod / kLife[kind])) + "\n";
         defines += "#define SPREAD " + literal(spacing) + "\n";
         graph.pass({.name = "particles",
                     .glsl = particles_frag,

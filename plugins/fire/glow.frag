@@ -1,9 +1,9 @@
 // acetate.fire, pass "glow": the floor lit by its fire. previous -> result over the floor's
 // reach. The glow map (texture.glow, one R16F cell per 4 scene pixels) is the emitters blurred
-// and scaled to a peak of 1; it flickers with two phases whose periods (0.37 s, 0.53 s) never
-// line up. Light multiplies the premultiplied colour, so transparent pixels stay (0, 0, 0, 0)
-// and alpha is passed through; where the map is 0 (beyond the blur's 3 sigma) the pixel is
-// copied exactly.
+// against a fixed reference (emitters.hpp); it flickers with two phases of 0.37 s and 0.53 s,
+// which line up again only every 19.61 s. Light multiplies the premultiplied colour, so transparent pixels stay (0, 0, 0, 0)
+// and alpha is passed through; where the map is 0 (beyond the blur's 3 sigma, plus about a
+// cell for filtering and the emitters' snap to cells) the pixel is copied exactly.
 
 void main() {
     vec4 c = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);

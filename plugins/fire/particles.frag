@@ -6,9 +6,10 @@
 //   offset  = unit(pcg4d(seed, emitter, kind * 256 + slot, 0))        when in its life it starts
 //   u       = clock * rate + offset     (rate = 1 / lifetime; `precise`: no fused multiply-add)
 //   cycle   = floor(u), age = u - cycle (0 at birth, 1 at death)
-//   r       = unit(pcg4d(seed, emitter, kind * 256 + slot, cycle + 1)) this life's four draws
-// clock = phase_clock * CLOCK_PERIOD, a phase the host reduces in double, and every lifetime
-// divides CLOCK_PERIOD, so the clock's wrap lands on a whole cycle. Integer hashing and the
+//   r       = unit(pcg4d(seed, emitter, kind * 256 + slot, cycle % cycles + 1))  this life's draws
+// clock = phase_clock * CLOCK_PERIOD, a phase the host reduces in double; every lifetime
+// divides CLOCK_PERIOD (cycles = CLOCK_PERIOD / lifetime lives per period), so at the clock's
+// wrap u drops by exactly `cycles` and, counted modulo it, nothing jumps. Integer hashing and the
 // exact conversion unit(h) = (h >> 8) / 2^24 make offset, cycle, age and r bit-identical on the
 // CPU (tests/fire_model.hpp); never fract(sin(x) * big), whose precision Vulkan leaves open.
 //
@@ -69,7 +70,10 @@ void main() {
     precise float u = clock * rate + offset;
     float cycle = floor(u);
     float age = u - cycle;
-    vec4 r = unit4(pcg4d(uvec4(seed, index, id, uint(cycle) + 1u)));
+    // The cycle counts modulo the lives per clock period, so at the clock's wrap (u drops by
+    // exactly that many) a particle keeps its draws mid-life.
+    uint cycles = uint(kind == 0 ? SMOKE_CYCLES : kind == 1 ? FLAME_CYCLES : EMBER_CYCLES);
+    vec4 r = unit4(pcg4d(uvec4(seed, index, id, uint(cycle) % cycles + 1u)));
 
     vec2 pos = gl_FragCoord.xy;
     vec2 jitter = vec2(r.x - 0.5, (r.y - 0.5) * 0.5) * SPREAD;  // |x| <= SPREAD/2, |y| <= SPREAD/4
@@ -102,7 +106,8 @@ void main() {
         float a = param_smoke * envelope * disc(length(pos - at) / radius, 0.2);
         src = vec4(vec3(0.22, 0.21, 0.20) * a, a);
     }
-    // A light-emitting pixel keeps colour up to 100 times its alpha: at a disc's very edge the
+    // A light-emitting pixel's colour can be some 2000 times its alpha (a flame at 3500 K and
+    // intensity 64): at a disc's very edge the
     // alpha would round to 0 in a half-float target while the colour did not. Such faint edges
     // (alpha under 1/4096, far below what a display shows) are left out, so a pixel that holds
     // colour always holds a normal half-float alpha too.
