@@ -165,6 +165,7 @@ void Compositor::record_floor_direct(VkCommandBuffer cmd, const FloorStep& step,
     // floor's own "tiles over transparent" image over it (docs/OVERVIEW.md).
     draw_tiles(cmd, Stage::TileToAccum, step.floor, step.scissor, report);
     vkCmdEndRendering(cmd);
+    if (timer_) timer_->mark(cmd, fmt::format("floor {} tiles", step.floor));
 }
 
 void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step,
@@ -215,6 +216,7 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     }
     vkCmdEndRendering(cmd);
     color.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    if (timer_) timer_->mark(cmd, fmt::format("floor {} tiles", step.floor));
 
     // The floor's effects, in scene order, ping-ponging between the two floor targets.
     GpuImage* current = &color;
@@ -237,6 +239,7 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
             io.time = time;
             io.canvas_width = width_;
             io.canvas_height = height_;
+            io.timer = timer_.get();
             // What "result" holds before this effect writes it: the poison where its passes
             // shade, the zeros (or tiles) of today elsewhere.
             if (options_.poison) fill_area(cmd, *next, io.result_scissor, *options_.poison);
@@ -269,6 +272,7 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
                        &push);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);
+    if (timer_) timer_->mark(cmd, fmt::format("floor {} composite", step.floor));
     ++report.passes;
     report.pixels_shaded += composite_area.area();
 }
@@ -297,6 +301,7 @@ void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, d
         io.time = time;
         io.canvas_width = width_;
         io.canvas_height = height_;
+        io.timer = timer_.get();
         if (options_.poison) fill_area(cmd, *next, io.result_scissor, *options_.poison);
         record_effect(cmd, renderer_, *effect, io, report);
         std::swap(current, next);
@@ -337,6 +342,7 @@ void Compositor::record_output(VkCommandBuffer cmd, FrameStats& stats) {
                        &push);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);
+    if (timer_) timer_->mark(cmd, "output");
     ++stats.passes;
     stats.pixels_shaded += all.area();
 }
@@ -344,11 +350,13 @@ void Compositor::record_output(VkCommandBuffer cmd, FrameStats& stats) {
 void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats,
                               double time) {
     viewed_floor_ = floor_color_ ? &*floor_color_ : nullptr;
+    if (timer_) timer_->begin(cmd);
     accumulation_.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vkCmdClearColorImage(cmd, accumulation_.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
                          &range);
+    if (timer_) timer_->mark(cmd, "clear");
     const bool floor_view = view_reads_floor_target(options_.view);
     for (const FloorStep& step : plan.steps) {
         FloorFrameReport report;
@@ -401,6 +409,11 @@ Result<FrameStats> Compositor::render(uint32_t active_floor, double time) {
     ACETATE_TRY(context_.submit_and_wait(
         [&](VkCommandBuffer cmd) { record_frame(cmd, last_plan_, stats, time); }));
     stats.milliseconds = milliseconds_since(start);
+    if (timer_) {
+        auto timings = timer_->read();
+        if (!timings) return timings.error();
+        stats.gpu_passes = std::move(timings.value());
+    }
 
     const auto* counts = static_cast<const uint32_t*>(violations_.mapped());
     for (FloorFrameReport& f : stats.floors) {

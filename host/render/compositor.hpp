@@ -18,6 +18,7 @@
 #include "render/scene_resources.hpp"
 #include "scene/scene.hpp"
 #include "vulkan/gpu_image.hpp"
+#include "vulkan/gpu_timer.hpp"
 
 namespace acetate {
 
@@ -67,6 +68,10 @@ struct CompositorOptions {
     // RendererOptions: the pool keys shaders by their source, so checked and unchecked
     // variants live side by side in one renderer, and the harness sets both options together.
     bool checked_builtins = false;
+    // Time every step of the frame on the GPU with timestamp queries (FrameStats::gpu_passes):
+    // for acetate-bench. Off, a frame records no query. A device whose queue has no timestamps
+    // loads anyway, untimed (gpu_timings_warning() says why).
+    bool gpu_timings = false;
 };
 
 // How the loaded scene's effect passes were given: only passes compiled from GLSL get
@@ -121,6 +126,8 @@ class Compositor {
     // Effect passes of every instance (floors and global), by how they were given.
     EffectPassCounts effect_pass_counts() const;
     const FramePlan& last_plan() const { return last_plan_; }
+    // Why frames are not timed although gpu_timings was asked for ("" when they are).
+    const std::string& gpu_timings_warning() const { return timer_warning_; }
     // Render targets held (accumulation, output, floor target and stencil when needed).
     std::vector<TargetInfo> targets_held() const;
     // Every GPU image held, targets and scene textures and masks alike.
@@ -172,6 +179,8 @@ class Compositor {
     std::vector<PixelRect> expansion_areas_;  // per floor; empty unless it has expanding effects
     LoadStats load_stats_;
     FramePlan last_plan_;
+    std::unique_ptr<GpuTimer> timer_;  // only with CompositorOptions::gpu_timings
+    std::string timer_warning_;
     bool effects_enabled_ = true;
     bool global_effects_enabled_ = true;
 };

@@ -153,6 +153,21 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
         if (expanding) out->geometry_[f].coverage = out->expansion_areas_.back();
     }
     ACETATE_TRY(out->warm_pipelines());
+    if (options.gpu_timings) {
+        // One mark per host step (the clear, each floor's tiles and composite, the output) and
+        // one per effect pass.
+        uint32_t marks = 2;
+        for (const auto& floor : out->floor_effects_) {
+            marks += 2;
+            for (const auto& e : floor) marks += uint32_t(e->passes.size());
+        }
+        for (const auto& e : out->global_effects_) marks += uint32_t(e->passes.size());
+        auto timer = GpuTimer::create(context, marks);
+        if (timer)
+            out->timer_ = std::move(timer.value());
+        else
+            out->timer_warning_ = timer.error().message;
+    }
 
     const ResourceCounters used = delta(context.counters(), before);
     out->load_stats_ = {milliseconds_since(start), used.images_loaded,

@@ -178,6 +178,7 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
             vkCmdDraw(cmd, 3, 1, 0, 0);
         vkCmdEndRendering(cmd);
         output->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        if (io.timer) io.timer->mark(cmd, pass.label);
         ++report.passes;
         // An instanced pass shades its quads (clipped to the canvas; overlaps count twice).
         report.pixels_shaded += pass.instance_count ? pass.instanced_pixels : scissor.area();

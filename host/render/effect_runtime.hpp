@@ -16,6 +16,7 @@
 #include "render/frame_stats.hpp"
 #include "scene/scene.hpp"
 #include "vulkan/gpu_image.hpp"
+#include "vulkan/gpu_timer.hpp"
 
 namespace acetate {
 
@@ -96,7 +97,8 @@ struct EffectIo {
     PixelRect result_scissor;              // the area "result" passes shade
     double time = 0;  // seconds; phases and the clock are reduced from it in double
     uint32_t canvas_width = 0, canvas_height = 0;
-    bool warm_up = false;  // shade one pixel per pass (load-time pipeline warm-up)
+    bool warm_up = false;       // shade one pixel per pass (load-time pipeline warm-up)
+    GpuTimer* timer = nullptr;  // marks each pass with its label when the frame is timed
 };
 
 // Records an instance's passes; counts passes and pixels shaded into `report`.

@@ -30,6 +30,12 @@ nlohmann::json to_json(const FrameStats& s) {
                           {"premultiplied_violations", s.violations},
                           {"floors", floors}};
     if (s.global) out["global_effects"] = report_json(*s.global);
+    if (!s.gpu_passes.empty()) {
+        nlohmann::json passes = nlohmann::json::array();
+        for (const PassTiming& p : s.gpu_passes)
+            passes.push_back({{"name", p.name}, {"gpu_milliseconds", p.milliseconds}});
+        out["gpu_passes"] = passes;
+    }
     return out;
 }
 

@@ -22,6 +22,12 @@ struct FloorFrameReport {
     uint64_t violations = 0;     // see FrameStats::violations
 };
 
+// GPU time of one recorded step of a frame (CompositorOptions::gpu_timings).
+struct PassTiming {
+    std::string name;  // "floor 0 tiles", a pass's label ("floor0.acetate.water.shade"), "output"
+    double milliseconds = 0;
+};
+
 struct FrameStats {
     uint32_t active_floor = 0;
     double milliseconds = 0;         // record + submit + wait for the frame
@@ -37,6 +43,7 @@ struct FrameStats {
     uint64_t violations = 0;
     std::vector<FloorFrameReport> floors;
     std::optional<FloorFrameReport> global;  // the global effects, when the scene has any
+    std::vector<PassTiming> gpu_passes;      // only with CompositorOptions::gpu_timings
 };
 
 struct LoadStats {

@@ -1,0 +1,91 @@
+#pragma once
+// What acetate-bench measures, as plain data: the runner fills it, the JSON and HTML reports
+// print it. Times are milliseconds of wall clock (record + submit + wait, as FrameStats) or of
+// GPU time between Vulkan timestamps; errors are against the reference configuration (the
+// plugin at its `ultra` preset with rgba32f targets), over premultiplied linear RGBA.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace acetate::bench {
+
+// idiff-style thresholds on a pixel's largest channel difference (absolute, linear light).
+struct ErrorThresholds {
+    // One half-float rounding at 1.0 (2^-10): below it, rgba16f cannot tell the images apart.
+    double warn = 1.0 / 1024.0;
+    // Four 8-bit steps at full scale (4/255): a difference a person can see on a display.
+    double fail = 4.0 / 255.0;
+};
+
+struct ErrorStats {
+    uint64_t pixels = 0;
+    // Largest |test - reference| over pixels and channels, in units of the half-float spacing
+    // at the reference value (2^-24 below 2^-14, the subnormals; 2^(e-10) for a value in
+    // [2^e, 2^(e+1))). 0 when identical.
+    double max_roundings = 0;
+    double max_abs = 0;   // largest |test - reference|
+    double mean_abs = 0;  // mean |test - reference| over every channel of every pixel
+    // 10 log10(1 / MSE) with peak 1.0 (display white in linear light), over every channel;
+    // infinite when the images are identical.
+    double psnr_db = 0;
+    double warn_share = 0;  // share of pixels whose largest channel difference > warn
+    double fail_share = 0;  // ... > fail
+    bool finite = true;     // no NaN or infinity in the test image
+};
+
+// GPU time of one recorded step of the frame (a host pass or one effect pass), median over the
+// timed frames.
+struct PassTime {
+    std::string name;  // e.g. "floor 0 tiles", "floor 0 acetate.water:shade", "output"
+    double milliseconds = 0;
+};
+
+// One plugin at one preset in one target format, on one scene.
+struct ConfigResult {
+    std::string scene;   // the scene file as given
+    std::string plugin;  // the plugin whose instances took `preset`
+    std::string preset;  // low / medium / high / ultra, or "off" (its instances removed)
+    std::string format;  // rgba16f / rgba32f
+    bool reference = false;
+    uint32_t floor = 0;  // the active floor rendered
+    uint32_t frames = 0;
+    double median_ms = 0, min_ms = 0, max_ms = 0;  // steady frames, after the first
+    double first_frame_ms = 0;                     // the first frame after load
+    double load_ms = 0;
+    std::vector<PassTime> gpu_passes;  // empty when the device has no timestamps
+    double gpu_total_ms = 0;           // sum of gpu_passes
+    uint64_t pixels_shaded = 0;
+    ErrorStats error;
+    std::string heat_map;  // PNG file name, relative to the HTML folder; empty if none written
+};
+
+// The same flattening done by another tool, timed in the same run.
+struct PeerComparison {
+    std::string scene;
+    std::string tool;     // "oiiotool --over"
+    std::string command;  // what was run, for the reader to repeat
+    double tool_ms = 0;   // the tool's whole run (median of its runs), files read and written
+    // Its --over operations alone: the same ImageBufAlgo::over chain in the bench's process,
+    // on tiles decoded beforehand (oiiotool --runstats rounds to 10 ms).
+    double tool_over_ms = 0;
+    double acetate_frame_ms = 0;  // a steady frame of the same scene with no effects
+    // Load (tiles decoded, uploaded), first frame, read back and EXR written, in one process:
+    // what the tool's run does, less the process start and the device creation.
+    double acetate_run_ms = 0;
+    ErrorStats difference;  // the tool's image against acetate's
+    std::string note;       // why one wins, in one line
+};
+
+struct BenchResults {
+    std::string device;
+    std::string date;  // UTC, ISO 8601
+    std::string load;  // /proc/loadavg at the start: the machine is shared
+    uint32_t frames = 0;
+    ErrorThresholds thresholds;
+    std::vector<ConfigResult> configs;
+    std::vector<PeerComparison> peers;
+};
+
+}  // namespace acetate::bench

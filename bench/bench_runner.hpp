@@ -1,0 +1,38 @@
+#pragma once
+// acetate-bench's runner: for each scene and plugin, every preset in every target format,
+// timed and compared with the reference configuration (the plugin at `ultra` with rgba32f
+// targets), then the same flattening by another tool (peer_flatten.hpp).
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench_results.hpp"
+#include "core/result.hpp"
+
+namespace acetate::bench {
+
+struct BenchOptions {
+    std::vector<std::filesystem::path> scenes;
+    std::vector<std::string> plugins;  // empty: every plugin each scene names
+    std::vector<std::string> presets{"low", "medium", "high", "ultra"};
+    std::vector<std::string> formats{"rgba16f", "rgba32f"};
+    uint32_t frames = 15;           // timed frames per configuration, after the first
+    double time = 2.5;              // seconds: the animation time every frame shows
+    std::optional<uint32_t> floor;  // the active floor; the scene's own when unset
+    std::vector<std::filesystem::path> plugin_paths;
+    ErrorThresholds thresholds;
+    std::optional<std::filesystem::path> heat_map_dir;  // heat-map PNGs go here when set
+    bool peers = true;  // time oiiotool's flattening of each scene beside acetate's
+};
+
+// One line per configuration as it starts ("[3/18] harbour.json acetate.water high rgba16f").
+using ProgressFn = std::function<void(const std::string& line)>;
+
+// Plugins are loaded without the registry's policy: the bench measures and ships no frame (it
+// says so on the progress line). Errors are one line naming the scene, plugin or option.
+Result<BenchResults> run_bench(const BenchOptions& options, const ProgressFn& progress);
+
+}  // namespace acetate::bench
