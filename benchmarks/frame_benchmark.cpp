@@ -594,19 +594,21 @@ void bm_optimisations(benchmark::State& state) {
         FrameStats stats;
     };
     std::vector<Config> configs;
-    auto add = [&](std::string name, bool scissor, bool cull, bool direct) {
+    auto add = [&](std::string name, bool scissor, bool cull, bool direct, bool merge = true) {
         PlanOptions plan;
         plan.scissor_to_coverage = scissor;
         plan.cull_hidden_floors = cull;
         plan.draw_direct = direct;
+        plan.merge_direct_floors = merge;
         configs.push_back({std::move(name), plan, nullptr, {}, {}});
     };
     add("all on (default)", true, true, true);
     add("scissor_to_coverage off", false, true, true);
     add("cull_hidden_floors off", true, false, true);
+    add("merge_direct_floors off", true, true, true, false);
     add("draw_direct off", true, true, false);
     add("draw_direct + scissor_to_coverage off", false, true, false);
-    add("all off", false, false, false);
+    add("all off", false, false, false, false);
     for (Config& c : configs) {
         CompositorOptions options;
         options.plan = c.plan;

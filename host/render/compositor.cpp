@@ -31,6 +31,15 @@ void fill_area(VkCommandBuffer cmd, GpuImage& image, const PixelRect& area,
     vkCmdEndRendering(cmd);
 }
 
+FloorFrameReport frame_report(const FloorStep& step) {
+    FloorFrameReport report;
+    report.floor = step.floor;
+    report.path = to_string(step.path);
+    report.why = step.why;
+    report.scissor = step.scissor;
+    return report;
+}
+
 }  // namespace
 
 Result<OutputView> parse_view(const std::string& name) {
@@ -151,21 +160,39 @@ void Compositor::draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor,
     }
 }
 
-void Compositor::record_floor_direct(VkCommandBuffer cmd, const FloorStep& step,
-                                     FloorFrameReport& report) {
+void Compositor::record_floors_direct(VkCommandBuffer cmd, const std::vector<FloorStep>& steps,
+                                      size_t first, size_t end, FrameStats& stats) {
+    // Consecutive floors drawn directly share one rendering pass over the union of their
+    // scissors: blending happens in draw order within a pass, so this is the same "over" as one
+    // pass per floor, without the barrier and the pass set-up between floors. Each floor's
+    // draws keep their own scissor.
+    PixelRect area;
+    for (size_t i = first; i < end; ++i)
+        if (steps[i].path == FloorPath::Direct) area = bounding_union(area, steps[i].scissor);
     accumulation_.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     VkRenderingAttachmentInfo color = color_attachment(accumulation_.view(), false);
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = to_vk(step.scissor);
+    info.renderArea = to_vk(area);
     info.layerCount = 1;
     info.colorAttachmentCount = 1;
     info.pColorAttachments = &color;
     vkCmdBeginRendering(cmd, &info);
-    // Over is associative, so drawing each tile over the accumulation equals compositing the
-    // floor's own "tiles over transparent" image over it (docs/OVERVIEW.md).
-    draw_tiles(cmd, Stage::TileToAccum, step.floor, step.scissor, report);
+    for (size_t i = first; i < end; ++i) {
+        const FloorStep& step = steps[i];
+        FloorFrameReport report = frame_report(step);
+        // Over is associative, so drawing each tile over the accumulation equals compositing
+        // the floor's own "tiles over transparent" image over it (docs/OVERVIEW.md).
+        if (step.path == FloorPath::Direct)
+            draw_tiles(cmd, Stage::TileToAccum, step.floor, step.scissor, report);
+        stats.passes += report.passes;
+        stats.pixels_shaded += report.pixels_shaded;
+        stats.floors.push_back(report);
+    }
     vkCmdEndRendering(cmd);
-    if (timer_) timer_->mark(cmd, fmt::format("floor {} tiles", step.floor));
+    if (timer_)
+        timer_->mark(cmd, first + 1 == end ? fmt::format("floor {} tiles", steps[first].floor)
+                                           : fmt::format("floors {}-{} tiles (one pass)",
+                                                         steps[first].floor, steps[end - 1].floor));
 }
 
 void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step,
@@ -358,13 +385,21 @@ void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameS
                          &range);
     if (timer_) timer_->mark(cmd, "clear");
     const bool floor_view = view_reads_floor_target(options_.view);
-    for (const FloorStep& step : plan.steps) {
-        FloorFrameReport report;
-        report.floor = step.floor;
-        report.path = to_string(step.path);
-        report.why = step.why;
-        report.scissor = step.scissor;
-        if (step.path == FloorPath::Direct) record_floor_direct(cmd, step, report);
+    const std::vector<FloorStep>& steps = plan.steps;
+    for (size_t i = 0; i < steps.size();) {
+        if (steps[i].path == FloorPath::Direct) {
+            // The run of floors up to the next one with a target (skipped floors record
+            // nothing, so they do not break it).
+            size_t end = i + 1;
+            while (options_.plan.merge_direct_floors && end < steps.size() &&
+                   steps[end].path != FloorPath::ThroughTarget)
+                ++end;
+            record_floors_direct(cmd, steps, i, end, stats);
+            i = end;
+            continue;
+        }
+        const FloorStep& step = steps[i++];
+        FloorFrameReport report = frame_report(step);
         if (step.path == FloorPath::ThroughTarget) {
             const bool is_viewed = floor_view && step.floor == stats.active_floor;
             record_floor_through_target(cmd, step, is_viewed, time, report);

@@ -144,7 +144,9 @@ class Compositor {
     Result<void> create_targets(const SceneDesc& scene);
     Result<void> warm_pipelines();
     void record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats, double time);
-    void record_floor_direct(VkCommandBuffer cmd, const FloorStep& step, FloorFrameReport& report);
+    // Steps [first, end): floors drawn directly (and skipped ones), in one rendering pass.
+    void record_floors_direct(VkCommandBuffer cmd, const std::vector<FloorStep>& steps,
+                              size_t first, size_t end, FrameStats& stats);
     void record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step, bool clear_all,
                                      double time, FloorFrameReport& report);
     void record_output(VkCommandBuffer cmd, FrameStats& stats);

@@ -22,6 +22,7 @@ struct PlanOptions {
     bool scissor_to_coverage = true;  // passes shade only the floor's coverage bounds
     bool cull_hidden_floors = true;   // skip floors under opaque coverage of floors above
     bool draw_direct = true;          // floors without effects draw straight into the accum
+    bool merge_direct_floors = true;  // consecutive direct floors share one rendering pass
     int64_t force_target_floor = -1;  // this floor goes through its target (debug views)
 };
 
