@@ -56,6 +56,9 @@ struct ConfigResult {
     double load_ms = 0;
     std::vector<PassTime> gpu_passes;  // empty when the device has no timestamps
     double gpu_total_ms = 0;           // sum of gpu_passes
+    // GPU time of `plugin`'s own passes (its instances on every floor): the effect's cost
+    // without the rest of the frame's noise. 0 for "off" and without timestamps.
+    double effect_gpu_ms = 0;
     uint64_t pixels_shaded = 0;
     ErrorStats error;
     std::string heat_map;  // PNG file name, relative to the HTML folder; empty if none written

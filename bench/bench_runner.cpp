@@ -1,7 +1,7 @@
 #include "bench_runner.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
+#include <stdlib.h>
 
 #include <algorithm>
 #include <chrono>
@@ -82,6 +82,22 @@ std::string preset_label(const std::string& preset) {
 
 }  // namespace
 
+Result<void> BenchDevice::check_validation() const {
+    if (context->validation_messages().empty()) return {};
+    return make_error(ErrorCode::VulkanCall,
+                      fmt::format("Vulkan validation: {}", context->validation_messages().front()));
+}
+
+Result<BenchDevice> open_device(const std::vector<std::filesystem::path>& plugin_paths) {
+    auto context = VulkanContext::create(ContextOptions::from_environment());
+    if (!context) return context.error();
+    RendererOptions renderer_options;
+    renderer_options.plugin_directories = PluginLoader::default_directories(plugin_paths);
+    auto renderer = Renderer::create(*context.value(), renderer_options);
+    if (!renderer) return renderer.error();
+    return BenchDevice{std::move(context.value()), std::move(renderer.value())};
+}
+
 Result<BenchResults> run_bench(const BenchOptions& options, const ProgressFn& progress) {
     for (const std::string& f : options.formats)
         if (parse_format(f) == VK_FORMAT_UNDEFINED)
@@ -105,15 +121,12 @@ Result<BenchResults> run_bench(const BenchOptions& options, const ProgressFn& pr
             return make_error(ErrorCode::InvalidInput,
                               fmt::format("--plugins: no scene names the plugin {}", id));
 
-    auto context = VulkanContext::create(ContextOptions::from_environment());
-    if (!context) return context.error();
-    RendererOptions renderer_options;
-    renderer_options.plugin_directories = PluginLoader::default_directories(options.plugin_paths);
-    auto renderer = Renderer::create(*context.value(), renderer_options);
-    if (!renderer) return renderer.error();
+    auto device = open_device(options.plugin_paths);
+    if (!device) return device.error();
+    auto& renderer = device->renderer;
 
     BenchResults results;
-    results.device = context.value()->device_name();
+    results.device = device->context->device_name();
     results.date = utc_now();
     results.load = load_average();
     results.frames = options.frames;
@@ -132,7 +145,7 @@ Result<BenchResults> run_bench(const BenchOptions& options, const ProgressFn& pr
                 std::find(options.plugins.begin(), options.plugins.end(), id) ==
                     options.plugins.end())
                 continue;
-            auto plan = plan_plugin(*renderer.value(), id, options);
+            auto plan = plan_plugin(*renderer, id, options);
             if (!plan) return plan.error();
             // The reference, the grid (which may hold the reference: measured once), "off".
             const bool grid_has_reference =
@@ -148,13 +161,17 @@ Result<BenchResults> run_bench(const BenchOptions& options, const ProgressFn& pr
                              scene.file.filename().string(), plugin, preset_label(preset), format,
                              options.frames));
         const uint32_t floor = options.floor.value_or(scene.active_floor);
-        auto m = measure_config(*renderer.value(), scene, parse_format(format), floor,
-                                options.frames, options.time);
+        auto m = measure_config(*renderer, scene, parse_format(format), floor, options.frames,
+                                options.time);
         if (!m) return m.error();
         m->result.scene = scene.file.string();
         m->result.plugin = plugin;
         m->result.preset = preset_label(preset);
         m->result.format = format;
+        // Pass labels read "floor2.acetate.water.shade" / "global.acetate.bloom.up1".
+        for (const PassTime& p : m->result.gpu_passes)
+            if (p.name.find("." + plugin + ".") != std::string::npos)
+                m->result.effect_gpu_ms += p.milliseconds;
         return m;
     };
 
@@ -204,12 +221,14 @@ Result<BenchResults> run_bench(const BenchOptions& options, const ProgressFn& pr
                             "effects",
                             scene.file.filename().string()));
             const SceneDesc flat = without_effects(scene);
-            auto m = measure_config(*renderer.value(), flat, VK_FORMAT_R16G16B16A16_SFLOAT,
+            auto m = measure_config(*renderer, flat, VK_FORMAT_R16G16B16A16_SFLOAT,
                                     uint32_t(flat.floors.size() - 1), options.frames, 0.0);
             if (!m) return m.error();
-            const fs::path work = fs::temp_directory_path() /
-                                  fmt::format("acetate-bench-{}", std::to_string(::getpid()));
-            fs::create_directories(work);
+            std::string folder = (fs::temp_directory_path() / "acetate-bench-XXXXXX").string();
+            if (!mkdtemp(folder.data()))
+                return make_error(ErrorCode::Io,
+                                  fmt::format("{}: cannot create a temporary folder", folder));
+            const fs::path work = folder;
             const auto save_start = std::chrono::steady_clock::now();
             ACETATE_TRY(save_image(work / "acetate-flattened.exr", m->image));
             const double save_ms = std::chrono::duration<double, std::milli>(
@@ -228,10 +247,7 @@ Result<BenchResults> run_bench(const BenchOptions& options, const ProgressFn& pr
             results.peers.push_back(peer.value());
         }
 
-    if (!context.value()->validation_messages().empty())
-        return make_error(
-            ErrorCode::VulkanCall,
-            fmt::format("Vulkan validation: {}", context.value()->validation_messages().front()));
+    ACETATE_TRY(device->check_validation());
     return results;
 }
 

@@ -5,12 +5,15 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "bench_results.hpp"
 #include "core/result.hpp"
+#include "render/renderer.hpp"
+#include "vulkan/vulkan_context.hpp"
 
 namespace acetate::bench {
 
@@ -27,6 +30,18 @@ struct BenchOptions {
     std::optional<std::filesystem::path> heat_map_dir;  // heat-map PNGs go here when set
     bool peers = true;  // time oiiotool's flattening of each scene beside acetate's
 };
+
+// The device and the renderer every measurement of a run shares (the pipeline pool and the
+// loaded plugins live as long as it does).
+struct BenchDevice {
+    std::unique_ptr<VulkanContext> context;
+    std::unique_ptr<Renderer> renderer;
+    // An error naming the first Vulkan validation message, if any was printed (with
+    // ACETATE_VALIDATION=1 the bench fails on one, like the test suite).
+    Result<void> check_validation() const;
+};
+// ACETATE_DEVICE picks the device, ACETATE_VALIDATION=1 turns the layers on.
+Result<BenchDevice> open_device(const std::vector<std::filesystem::path>& plugin_paths);
 
 // One line per configuration as it starts ("[3/18] harbour.json acetate.water high rgba16f").
 using ProgressFn = std::function<void(const std::string& line)>;

@@ -162,7 +162,8 @@ class Page {
     void table(const Group& g) {
         put("<table>\n<tr><th title=\"on the Pareto front\">Front</th><th>Preset</th>"
             "<th>Format</th><th class=\"num\">Median ms (min–max)</th><th class=\"num\">First "
-            "frame ms</th><th class=\"num\">Load ms</th><th class=\"num\">Pixels shaded</th>"
+            "frame ms</th><th class=\"num\">Effect GPU ms</th><th class=\"num\">Load ms</th><th "
+            "class=\"num\">Pixels shaded</th>"
             "<th class=\"num\">Max roundings</th><th class=\"num\">Max |error|</th>"
             "<th class=\"num\">Mean |error|</th><th class=\"num\">PSNR</th><th class=\"num\">Warn"
             "</th><th class=\"num\">Fail</th><th>Finite</th></tr>\n");
@@ -173,14 +174,14 @@ class Page {
                 "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
                 "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
                 "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
-                "<td>{}</td></tr>\n",
+                "<td class=\"num\">{}</td><td>{}</td></tr>\n",
                 g.front[i] ? " class=\"front\"" : "", g.front[i] ? "◆" : "", escape(c.preset),
                 c.reference ? " <span class=\"muted\">(reference)</span>" : "", escape(c.format),
                 ms_text(c.median_ms), ms_text(c.min_ms), ms_text(c.max_ms),
-                ms_text(c.first_frame_ms), ms_text(c.load_ms), count_text(c.pixels_shaded),
-                error_text(e.max_roundings), error_text(e.max_abs), error_text(e.mean_abs),
-                psnr_text(e.psnr_db), share_text(e.warn_share), share_text(e.fail_share),
-                e.finite ? "yes" : "<strong>no</strong>");
+                ms_text(c.first_frame_ms), ms_text(c.effect_gpu_ms), ms_text(c.load_ms),
+                count_text(c.pixels_shaded), error_text(e.max_roundings), error_text(e.max_abs),
+                error_text(e.mean_abs), psnr_text(e.psnr_db), share_text(e.warn_share),
+                share_text(e.fail_share), e.finite ? "yes" : "<strong>no</strong>");
         }
         put("</table>\n");
     }

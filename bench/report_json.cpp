@@ -49,6 +49,7 @@ json to_json(const ConfigResult& c) {
                 {"load_ms", number(c.load_ms)},
                 {"gpu_passes", std::move(passes)},
                 {"gpu_total_ms", number(c.gpu_total_ms)},
+                {"effect_gpu_ms", number(c.effect_gpu_ms)},
                 {"pixels_shaded", c.pixels_shaded},
                 {"error", to_json(c.error)},
                 {"heat_map", c.heat_map}};

@@ -41,6 +41,14 @@ for i in $(seq 0 11); do
   "$build/host/acetate" render "$scene" -o "$out/animation/frame_$(printf '%03d' "$i").png" \
     --floor 0 --time "$t" >/dev/null
 done
+# What each preset costs and what it gets wrong: every plugin x preset x format of the scene
+# against ultra at rgba32f, and the same flattening by oiiotool (about 1.5 minutes).
+echo "== Speed against error: acetate-bench, report in $out/bench/index.html"
+mkdir -p "$out/bench"
+"$build/bench/acetate-bench" "$scene" --frames 5 --html "$out/bench" --json "$out/bench/bench.json" \
+  >"$out/bench/bench.txt"
+tail -n 6 "$out/bench/bench.txt"
+
 floors=$(cd "$out" && ls normal.floor*.png | sed -E 's/normal\.floor([0-9]+)\.png/\1/' | sort -n | tr '\n' ' ')
 
 # One picture to look at: every view (rows) for every floor (columns).
@@ -60,6 +68,7 @@ echo "  <view>.floorN.png      debug views: floor-alpha accum-alpha floor-rgb vi
 echo "  <view>.stats.json      load and per-frame statistics"
 echo "  animation/frame_NNN.png  floor 0 over one second, 12 frames"
 echo "  validation/<plugin>/index.html   the harness's reports (report.json beside each)"
+echo "  bench/index.html       speed against error: each plugin's presets (bench.json, bench.txt)"
 echo "Registry: $build/validation/VALIDATION-REGISTRY.md"
 if [ -f "$out/contact-sheet.png" ]; then
   echo "  contact-sheet.png      all views (rows) x floors (columns)"

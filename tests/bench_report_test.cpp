@@ -121,9 +121,10 @@ TEST(BenchJson, EveryFieldIsWritten) {
     EXPECT_EQ(j["thresholds"]["warn"].get<double>(), 1.0 / 1024.0);
     ASSERT_EQ(j["configs"].size(), 7u);
     const std::set<std::string> config_keys = {
-        "scene",      "plugin",       "preset",        "format", "reference",      "floor",
-        "frames",     "median_ms",    "min_ms",        "max_ms", "first_frame_ms", "load_ms",
-        "gpu_passes", "gpu_total_ms", "pixels_shaded", "error",  "heat_map"};
+        "scene",          "plugin",  "preset",     "format",       "reference",
+        "floor",          "frames",  "median_ms",  "min_ms",       "max_ms",
+        "first_frame_ms", "load_ms", "gpu_passes", "gpu_total_ms", "effect_gpu_ms",
+        "pixels_shaded",  "error",   "heat_map"};
     const std::set<std::string> error_keys = {"pixels",  "max_roundings", "max_abs",    "mean_abs",
                                               "psnr_db", "warn_share",    "fail_share", "finite"};
     for (const json& c : j["configs"]) {

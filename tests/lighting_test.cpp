@@ -116,6 +116,43 @@ TEST_F(LightingTest, PreservesAlphaExactlyAndKeepsTransparentPixelsZero) {
     EXPECT_EQ(stats.violations, 0u);
 }
 
+// Light multiplies colour, so a bright light on an HDR pixel could leave the half-float range:
+// rgba16f would then store Inf (or, rounding toward zero as lavapipe does, hide it). The lit
+// colour is capped at 65504 and never lowers a channel already above it, so it is checked in
+// rgba32f targets, where nothing else would cap it.
+TEST_F(LightingTest, NeverPushesAChannelPastTheHalfFloatMaximum) {
+    SceneDesc scene = make_scene(48, 16, {0, 0, 0, 1});
+    const uint32_t floor = add_floor(scene, "ground");
+    ImageRGBA tile(48, 16);
+    for (uint32_t y = 0; y < 16; ++y)
+        for (uint32_t x = 0; x < 48; ++x) {
+            // Left third 40000 (lit past the cap), middle 65504 (at it), right 90000 (above
+            // it already: a light may not lower it), alpha 1 and 0.5 in alternate rows.
+            const float level = x < 16 ? 40000.0f : x < 32 ? 65504.0f : 90000.0f;
+            const float a = y % 2 ? 0.5f : 1.0f;
+            float* p = tile.at(x, y);
+            p[0] = p[1] = p[2] = level * a;
+            p[3] = a;
+        }
+    add_tile(scene, floor, tile, {0, 0, 48, 16});
+    scene.floors[floor].lights = {{{24, 8}, 60, {1, 1, 1}, 1000.0f}};
+    scene.floors[floor].effects = {lighting({{"day", 1.0}, {"day_ambient", 1.0}})};
+    CompositorOptions options;
+    options.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    auto compositor = load(scene, options);
+    ASSERT_TRUE(compositor);
+    const ImageRGBA out = render(*compositor, floor);
+    for (uint32_t y = 0; y < 16; ++y)
+        for (uint32_t x = 0; x < 48; ++x) {
+            const float in = tile.at(x, y)[0];
+            // Lit by at least the ambient 1, so every pixel reaches max(in, 65504) or more
+            // before the cap: the output is exactly that (over opaque black, alpha 1 or 0.5).
+            const float expected = std::max(in, 65504.0f);
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(out.at(x, y)[c], expected) << "pixel " << x << "," << y;
+        }
+}
+
 TEST_F(LightingTest, OneFloorsLightsNeverLightAnotherFloor) {
     SceneDesc scene = make_scene(64, 32, {0, 0, 0, 1});
     const uint32_t ground = add_floor(scene, "ground");

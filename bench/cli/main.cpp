@@ -11,6 +11,7 @@
 
 #include "bench_runner.hpp"
 #include "core/atomic_file.hpp"
+#include "hard_cases.hpp"
 #include "report.hpp"
 
 namespace {
@@ -49,16 +50,17 @@ void print_tables(const BenchResults& results) {
             current = group;
             std::printf("\n%s (floor %u; error against %s)\n", group.c_str(), c.floor,
                         c.reference ? (c.preset + " rgba32f").c_str() : "the reference");
-            std::printf("%-8s %-8s %9s %17s %9s %11s %10s %10s %7s %6s %6s\n", "preset", "format",
-                        "frame ms", "min-max", "first ms", "pixels", "max round", "mean abs",
-                        "PSNR", "warn%", "fail%");
+            std::printf("%-8s %-8s %9s %17s %9s %9s %11s %10s %10s %7s %6s %6s\n", "preset",
+                        "format", "frame ms", "min-max", "first ms", "effect ms", "pixels",
+                        "max round", "mean abs", "PSNR", "warn%", "fail%");
         }
-        std::printf("%-8s %-8s %9.2f %8.2f-%-8.2f %9.2f %11llu %10.4g %10.3g %7s %6.2f %6.2f%s\n",
-                    c.preset.c_str(), c.format.c_str(), c.median_ms, c.min_ms, c.max_ms,
-                    c.first_frame_ms, static_cast<unsigned long long>(c.pixels_shaded),
-                    c.error.max_roundings, c.error.mean_abs, psnr_text(c.error.psnr_db).c_str(),
-                    100 * c.error.warn_share, 100 * c.error.fail_share,
-                    c.error.finite ? "" : "  NOT FINITE");
+        std::printf(
+            "%-8s %-8s %9.2f %8.2f-%-8.2f %9.2f %9.2f %11llu %10.4g %10.3g %7s %6.2f %6.2f%s\n",
+            c.preset.c_str(), c.format.c_str(), c.median_ms, c.min_ms, c.max_ms, c.first_frame_ms,
+            c.effect_gpu_ms, static_cast<unsigned long long>(c.pixels_shaded),
+            c.error.max_roundings, c.error.mean_abs, psnr_text(c.error.psnr_db).c_str(),
+            100 * c.error.warn_share, 100 * c.error.fail_share,
+            c.error.finite ? "" : "  NOT FINITE");
     }
     for (const PeerComparison& p : results.peers) {
         std::printf("\n%s flattened without effects: %s\n", p.scene.c_str(), p.tool.c_str());
@@ -74,6 +76,25 @@ void print_tables(const BenchResults& results) {
     }
 }
 
+// --hard-cases: the stability table, printed as markdown (docs/performance.md holds it).
+int run_hard_case_table(const std::vector<std::string>& plugins,
+                        const std::vector<std::string>& plugin_paths) {
+    std::vector<fs::path> paths(plugin_paths.begin(), plugin_paths.end());
+    auto device = open_device(paths);
+    if (!device) return fail(device.error().message);
+    std::fprintf(stderr, "acetate-bench: hard cases on %s\n",
+                 device->context->device_name().c_str());
+    auto table = run_hard_cases(*device->renderer, plugins, [](const std::string& line) {
+        std::fprintf(stderr, "%s\n", line.c_str());
+    });
+    if (!table) return fail(table.error().message);
+    if (auto clean = device->check_validation(); !clean) return fail(clean.error().message);
+    std::printf("%s", hard_cases_markdown(table.value()).c_str());
+    const bool all_pass =
+        std::all_of(table->begin(), table->end(), [](const HardCaseResult& r) { return r.pass; });
+    return all_pass ? 0 : 2;  // 2: a cell failed (the table says which)
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -86,8 +107,11 @@ int main(int argc, char** argv) {
     std::optional<std::string> html, json;
     std::optional<uint32_t> floor;
     std::vector<std::string> plugin_paths;
-    bool no_peers = false;
-    app.add_option("scenes", scenes, "scene files (acetate-scene/1 JSON)")->required();
+    bool no_peers = false, hard_cases = false;
+    app.add_option("scenes", scenes, "scene files (acetate-scene/1 JSON)");
+    app.add_flag("--hard-cases", hard_cases,
+                 "instead of scenes: each plugin on alpha 2^-24, colour 65504, 16 floors, 1x1, "
+                 "odd sizes and time 1e5 s, as a markdown table");
     app.add_option("--plugins", plugins,
                    "comma-separated plugin ids (default: every plugin named)");
     app.add_option("--presets", presets, "comma-separated presets")->capture_default_str();
@@ -110,6 +134,8 @@ int main(int argc, char** argv) {
     app.add_flag("--no-peers", no_peers, "skip the oiiotool flattening");
     CLI11_PARSE(app, argc, argv);
 
+    if (hard_cases) return run_hard_case_table(split_list(plugins), plugin_paths);
+    if (scenes.empty()) return fail("expected at least one scene file (or --hard-cases)");
     for (const auto& s : scenes) options.scenes.emplace_back(s);
     options.plugins = split_list(plugins);
     options.presets = split_list(presets);

@@ -31,5 +31,7 @@ void main() {
         float flicker = 1.0 + param_flicker * 0.15 * sin(acetate_time * 7.0 + float(i) * 1.7);
         light += l.color * (l.intensity * falloff(d) * flicker * (1.0 - param_darkness));
     }
-    out_color = vec4(c.rgb * light, c.a);
+    // Capped at 65504, the largest half float, so a bright light never stores Inf in rgba16f
+    // targets; a channel already above it (rgba32f) is never lowered by the cap.
+    out_color = vec4(min(c.rgb * light, max(c.rgb, vec3(65504.0))), c.a);
 }
