@@ -81,6 +81,21 @@ struct PeerComparison {
     std::string note;       // why one wins, in one line
 };
 
+// The frame against its limits, per scene as given (its own presets, rgba16f targets), measured
+// before anything else runs in the process, so the first frame meets only what the scene's
+// own load compiled.
+struct FrameLimits {
+    std::string scene;
+    uint32_t floor = 0;             // the active floor
+    double steady_ms = 0;           // median of the timed frames there
+    double first_frame_ms = 0;      // the first frame after the scene's load
+    int64_t switch_floor = -1;      // the floor switched to; -1 when the scene has one floor
+    double switch_ms = 0;           // the first frame after switching to it
+    double switch_steady_ms = 0;    // steady frames at that floor
+    uint64_t pixels_shaded = 0;     // a frame at `floor` (FrameStats::pixels_shaded)
+    uint64_t necessary_pixels = 0;  // the fewest any renderer must shade there
+};
+
 struct BenchResults {
     std::string device;
     std::string date;  // UTC, ISO 8601
@@ -89,6 +104,7 @@ struct BenchResults {
     ErrorThresholds thresholds;
     std::vector<ConfigResult> configs;
     std::vector<PeerComparison> peers;
+    std::vector<FrameLimits> limits;
 };
 
 }  // namespace acetate::bench

@@ -154,6 +154,18 @@ Result<BenchResults> run_bench(const BenchOptions& options, const ProgressFn& pr
             total += 2 + plan->presets.size() * options.formats.size() - grid_has_reference;
             jobs.push_back({s, std::move(plan.value())});
         }
+    // The limits first: the first frame after a load must meet only what that load compiled.
+    for (const SceneDesc& scene : scenes) {
+        progress(
+            fmt::format("{}: the frame against its limits (first frame, floor switch, "
+                        "pixels shaded against the minimum)",
+                        scene.file.filename().string()));
+        auto limits = measure_limits(*renderer, scene, options.floor.value_or(scene.active_floor),
+                                     options.frames, options.time);
+        if (!limits) return limits.error();
+        results.limits.push_back(limits.value());
+    }
+
     size_t done = 0;
     auto run = [&](const SceneDesc& scene, const std::string& plugin, const std::string& preset,
                    const std::string& format) -> Result<Measurement> {

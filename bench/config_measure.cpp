@@ -73,4 +73,44 @@ Result<Measurement> measure_config(Renderer& renderer, const SceneDesc& scene, V
     return out;
 }
 
+Result<FrameLimits> measure_limits(Renderer& renderer, const SceneDesc& scene, uint32_t floor,
+                                   uint32_t frames, double time) {
+    auto compositor = Compositor::load(renderer, scene, CompositorOptions{});
+    if (!compositor) return compositor.error();
+    Compositor& c = *compositor.value();
+    FrameLimits out;
+    out.scene = scene.file.string();
+    out.floor = floor;
+    // Frames at `at` after one already rendered: their median.
+    auto steady = [&](uint32_t at, FrameStats* last) -> Result<double> {
+        std::vector<double> ms;
+        for (uint32_t i = 0; i < std::max(frames, 1u); ++i) {
+            auto stats = c.render(at, time);
+            if (!stats) return stats.error();
+            ms.push_back(stats->milliseconds);
+            if (last) *last = stats.value();
+        }
+        return median(ms);
+    };
+    auto first = c.render(floor, time);
+    if (!first) return first.error();
+    out.first_frame_ms = first->milliseconds;
+    FrameStats last;
+    auto at_floor = steady(floor, &last);
+    if (!at_floor) return at_floor.error();
+    out.steady_ms = at_floor.value();
+    out.pixels_shaded = last.pixels_shaded;
+    out.necessary_pixels = c.necessary_pixels(floor);
+    if (c.floor_count() > 1) {
+        out.switch_floor = floor == 0 ? int64_t(c.floor_count()) - 1 : 0;
+        auto switched = c.render(uint32_t(out.switch_floor), time);
+        if (!switched) return switched.error();
+        out.switch_ms = switched->milliseconds;
+        auto there = steady(uint32_t(out.switch_floor), nullptr);
+        if (!there) return there.error();
+        out.switch_steady_ms = there.value();
+    }
+    return out;
+}
+
 }  // namespace acetate::bench

@@ -25,6 +25,11 @@ struct Measurement {
 Result<Measurement> measure_config(Renderer& renderer, const SceneDesc& scene, VkFormat format,
                                    uint32_t floor, uint32_t frames, double time);
 
+// The scene as given, in rgba16f: first frame after load, steady frames, the first frame after
+// switching to another floor and steady frames there, pixels shaded against the minimum.
+Result<FrameLimits> measure_limits(Renderer& renderer, const SceneDesc& scene, uint32_t floor,
+                                   uint32_t frames, double time);
+
 VkFormat parse_format(const std::string& name);  // VK_FORMAT_UNDEFINED when unknown
 
 }  // namespace acetate::bench

@@ -101,6 +101,7 @@ class Page {
         header();
         for (size_t g = 0; g < groups_.size(); ++g) group(g);
         peers();
+        limits();
         put("</body>\n</html>\n");
         return std::move(out_);
     }
@@ -138,6 +139,8 @@ class Page {
             put("<li><a href=\"#g{}\">{} on {}</a></li>\n", g, escape(groups_[g].plugin),
                 escape(groups_[g].scene));
         if (!results_.peers.empty()) put("<li><a href=\"#peers\">Other tools</a></li>\n");
+        if (!results_.limits.empty())
+            put("<li><a href=\"#limits\">The frame against its limits</a></li>\n");
         put("</ul>\n");
     }
 
@@ -255,6 +258,36 @@ class Page {
                 share_text(d.fail_share), d.finite ? "" : ", <strong>not finite</strong>",
                 escape(p.note));
         }
+        put("</table>\n</section>\n");
+    }
+
+    static std::string ratio(double a, double b) {
+        return a > 0 && b > 0 ? fmt::format("{:.2f}×", a / b) : "—";
+    }
+
+    void limits() {
+        if (results_.limits.empty()) return;
+        put("<section id=\"limits\">\n<h2>The frame against its limits</h2>\n<p class=\"muted\">"
+            "Each scene as given (its presets, rgba16f), measured first in the run. Pixels "
+            "shaded against the fewest any renderer must shade (Compositor::necessary_pixels); "
+            "the first frame after load and after a floor switch against steady frames.</p>\n"
+            "<table>\n<tr><th>Scene</th><th class=\"num\">Floor</th><th class=\"num\">Pixels "
+            "shaded</th><th class=\"num\">Necessary</th><th class=\"num\">Shaded ÷ "
+            "necessary</th><th class=\"num\">First frame ms</th><th class=\"num\">Steady ms</th>"
+            "<th class=\"num\">First ÷ steady</th><th class=\"num\">Switch to</th>"
+            "<th class=\"num\">After switch ÷ steady</th></tr>\n");
+        for (const FrameLimits& l : results_.limits)
+            put("<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
+                "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
+                "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
+                "<td class=\"num\">{}</td></tr>\n",
+                escape(l.scene), l.floor, count_text(l.pixels_shaded),
+                count_text(l.necessary_pixels),
+                ratio(double(l.pixels_shaded), double(l.necessary_pixels)),
+                ms_text(l.first_frame_ms), ms_text(l.steady_ms),
+                ratio(l.first_frame_ms, l.steady_ms),
+                l.switch_floor < 0 ? std::string("—") : std::to_string(l.switch_floor),
+                ratio(l.switch_ms, l.switch_steady_ms));
         put("</table>\n</section>\n");
     }
 

@@ -69,10 +69,23 @@ json to_json(const PeerComparison& p) {
 
 }  // namespace
 
+json to_json(const FrameLimits& l) {
+    return json{{"scene", l.scene},
+                {"floor", l.floor},
+                {"steady_ms", number(l.steady_ms)},
+                {"first_frame_ms", number(l.first_frame_ms)},
+                {"switch_floor", l.switch_floor},
+                {"switch_ms", number(l.switch_ms)},
+                {"switch_steady_ms", number(l.switch_steady_ms)},
+                {"pixels_shaded", l.pixels_shaded},
+                {"necessary_pixels", l.necessary_pixels}};
+}
+
 json to_json(const BenchResults& results) {
-    json configs = json::array(), peers = json::array();
+    json configs = json::array(), peers = json::array(), limits = json::array();
     for (const ConfigResult& c : results.configs) configs.push_back(to_json(c));
     for (const PeerComparison& p : results.peers) peers.push_back(to_json(p));
+    for (const FrameLimits& l : results.limits) limits.push_back(to_json(l));
     return json{
         {"device", results.device},
         {"date", results.date},
@@ -81,7 +94,8 @@ json to_json(const BenchResults& results) {
         {"thresholds",
          {{"warn", number(results.thresholds.warn)}, {"fail", number(results.thresholds.fail)}}},
         {"configs", std::move(configs)},
-        {"peers", std::move(peers)}};
+        {"peers", std::move(peers)},
+        {"limits", std::move(limits)}};
 }
 
 Result<void> write_json(const fs::path& file, const BenchResults& results) {

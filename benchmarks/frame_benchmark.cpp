@@ -381,8 +381,9 @@ class RawRenderer {
         vkCmdSetScissor(cmd_, 0, 1, &scissor);
         for (const LoadedTile& tile : resources_->floors()[step.floor].tiles) {
             if (intersect(tile.pixels, step.scissor).empty()) continue;
-            push_images(tile.texture->view(), tile.texture->view(), pipelines_->linear_sampler(),
-                        1);
+            // As draw_tiles: a 1:1 tile reads its texels through the nearest sampler.
+            const VkSampler sampler = pipelines_->tile_sampler(tile.one_to_one);
+            push_images(tile.texture->view(), tile.texture->view(), sampler, 1);
             StagePushConstants pc;
             pc.rect[0] = float(tile.rect.x);
             pc.rect[1] = float(tile.rect.y);
@@ -391,7 +392,6 @@ class RawRenderer {
             pc.canvas[0] = float(scene_.width);
             pc.canvas[1] = float(scene_.height);
             pc.floor_index = step.floor;
-            pc.mode = tile.one_to_one ? 2u : 0u;
             push(pc);
             vkCmdDraw(cmd_, 4, 1, 0, 0);
         }

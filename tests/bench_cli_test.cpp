@@ -65,6 +65,8 @@ TEST(BenchCli, ReportsEveryConfigurationWithTheReferenceAtZeroError) {
                                         (dir / "report").string() + "'");
     ASSERT_EQ(run.code, 0) << run.describe();
     // Progress: one line per configuration, counted.
+    EXPECT_NE(run.err.find("tiny.json: the frame against its limits"), std::string::npos)
+        << run.describe();
     EXPECT_NE(run.err.find("[1/5] tiny.json acetate.lighting ultra rgba32f"), std::string::npos)
         << run.describe();
     EXPECT_NE(run.err.find("[5/5]"), std::string::npos) << run.describe();
@@ -107,6 +109,12 @@ TEST(BenchCli, ReportsEveryConfigurationWithTheReferenceAtZeroError) {
     const std::string html = test::read_file(dir / "report" / "index.html");
     EXPECT_NE(html.find("<svg"), std::string::npos);
     EXPECT_NE(html.find("acetate.lighting"), std::string::npos);
+    // The limits: one tile covering the canvas, lit: every pass shades exactly the tile, so
+    // what the frame shades is the minimum (tile, lighting, composite, output: 4 canvases).
+    ASSERT_EQ(results["limits"].size(), 1u) << results.dump(2);
+    EXPECT_EQ(results["limits"][0]["necessary_pixels"], 4 * 19 * 13) << results["limits"][0];
+    EXPECT_EQ(results["limits"][0]["pixels_shaded"], 4 * 19 * 13) << results["limits"][0];
+    EXPECT_EQ(results["limits"][0]["switch_floor"], -1) << results["limits"][0];
     // The peer: oiiotool flattened the same tile, and the two images agree to half precision
     // (acetate's output image is rgba16f; the tile is exact in both).
     ASSERT_EQ(results["peers"].size(), 1u) << results.dump(2);

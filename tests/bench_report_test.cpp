@@ -116,7 +116,7 @@ std::set<std::string> keys(const json& object) {
 TEST(BenchJson, EveryFieldIsWritten) {
     const json j = to_json(sample());
     EXPECT_EQ(keys(j), (std::set<std::string>{"device", "date", "load", "frames", "thresholds",
-                                              "configs", "peers"}));
+                                              "configs", "peers", "limits"}));
     EXPECT_EQ(keys(j["thresholds"]), (std::set<std::string>{"warn", "fail"}));
     EXPECT_EQ(j["thresholds"]["warn"].get<double>(), 1.0 / 1024.0);
     ASSERT_EQ(j["configs"].size(), 7u);

@@ -225,8 +225,9 @@ TEST_F(FireTest, FireAboveItsTileKeepsTheContractAndNeverLowersAlpha) {
                 ASSERT_LE(o[3], 1.0f);
                 for (int c = 0; c < 3; ++c) {
                     ASSERT_TRUE(std::isfinite(o[c]) && o[c] >= 0.0f) << x << "," << y;
-                    if (o[3] == 0.0f)
+                    if (o[3] == 0.0f) {
                         ASSERT_EQ(o[c], 0.0f) << "colour at alpha 0, " << x << "," << y;
+                    }
                 }
                 above += y < 40 && o[3] > 0.0f;
             }
@@ -303,7 +304,7 @@ TEST_F(FireTest, OddCanvasesAndAnEmptyMask) {
         SceneDesc scene = make_scene(w, h);
         const ImageRGBA tile = solid(w, h, {0.2f, 0.1f, 0.1f, 1});
         const uint32_t floor = fire_floor(scene, tile, block_mask(w, h, 0, 0, int(w), int(h)),
-                                          {0, 0, int32_t(w), int32_t(h)}, test_params());
+                                          {0, 0, double(w), double(h)}, test_params());
         auto compositor = load(scene);
         ASSERT_TRUE(compositor) << w << "x" << h;
         for (double time : {0.0, 1e5}) {

@@ -38,8 +38,9 @@ TEST_F(InstancedQuads, SparksLandWhereFloorDataSaysInThePaletteColour) {
     EXPECT_EQ(out.at(75, 5)[3], 0.0f);
     EXPECT_EQ(out.at(60, 14)[3], 0.0f) << "quad corner outside the disc stays transparent";
     for (size_t i = 0; i < out.pixels.size(); i += 4)
-        if (out.pixels[i + 3] == 0.0f)
+        if (out.pixels[i + 3] == 0.0f) {
             ASSERT_TRUE(out.pixels[i] == 0 && out.pixels[i + 1] == 0 && out.pixels[i + 2] == 0);
+        }
     EXPECT_EQ(stats.violations, 0u);
     // The sparks pass shades its two 10x10 quads, not the canvas.
     const FloorFrameReport& report = stats.floors.at(0);

@@ -109,9 +109,10 @@ TEST_F(LightingTest, PreservesAlphaExactlyAndKeepsTransparentPixelsZero) {
             const float* p = accumulation->at(x, y);
             // The tile's alpha in half precision, unchanged by the effect.
             ASSERT_EQ(p[3], float(Imath::half(tile.at(x, y)[3]))) << x << "," << y;
-            if (tile.at(x, y)[3] == 0.0f)
+            if (tile.at(x, y)[3] == 0.0f) {
                 for (int c = 0; c < 3; ++c)
                     ASSERT_EQ(p[c], 0.0f) << "colour at alpha 0, " << x << "," << y;
+            }
         }
     EXPECT_EQ(stats.violations, 0u);
 }

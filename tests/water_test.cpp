@@ -56,7 +56,7 @@ class WaterTest : public RenderTest {
     uint32_t water_floor(SceneDesc& scene, const ImageRGBA& tile, const std::vector<double>* cover,
                          const nlohmann::json& params, const std::string& preset = "") {
         const uint32_t floor = add_floor(scene, fmt::format("f{}", scene.floors.size()));
-        add_tile(scene, floor, tile, {0, 0, int32_t(scene.width), int32_t(scene.height)});
+        add_tile(scene, floor, tile, {0, 0, double(scene.width), double(scene.height)});
         if (cover)
             scene.floors[floor].tiles[0].masks["water"] =
                 write_exr(dir() / fmt::format("water{}.exr", masks_++),
@@ -98,7 +98,9 @@ class WaterTest : public RenderTest {
                 for (int c = 0; c < 3; ++c) {
                     ASSERT_TRUE(std::isfinite(p[c]) && p[c] >= 0.0f && p[c] <= 65504.0f)
                         << what << " channel " << c << " at " << x << "," << y << " is " << p[c];
-                    if (p[3] == 0.0f) ASSERT_EQ(p[c], 0.0f) << what << " colour at alpha 0";
+                    if (p[3] == 0.0f) {
+                        ASSERT_EQ(p[c], 0.0f) << what << " colour at alpha 0";
+                    }
                 }
             }
     }
@@ -158,7 +160,9 @@ TEST_F(WaterTest, StillWaterMatchesTheCpuTintInDouble) {
                 ASSERT_NEAR(out.at(x, y)[c], expected[c], tolerance)
                     << "channel " << c << " at " << x << "," << y << " (cover " << cover[i]
                     << ", distance " << distance[i] << ")";
-                if (cover[i] == 0) ASSERT_EQ(out.at(x, y)[c], bed[c]) << "land is copied exactly";
+                if (cover[i] == 0) {
+                    ASSERT_EQ(out.at(x, y)[c], bed[c]) << "land is copied exactly";
+                }
             }
             ASSERT_EQ(out.at(x, y)[3], 1.0f);
         }

@@ -13,6 +13,7 @@
 #include "core/atomic_file.hpp"
 #include "hard_cases.hpp"
 #include "report.hpp"
+#include "scaling.hpp"
 
 namespace {
 
@@ -62,6 +63,20 @@ void print_tables(const BenchResults& results) {
             100 * c.error.warn_share, 100 * c.error.fail_share,
             c.error.finite ? "" : "  NOT FINITE");
     }
+    for (const FrameLimits& l : results.limits) {
+        std::printf("\n%s against its limits (floor %u, rgba16f, its own presets)\n",
+                    l.scene.c_str(), l.floor);
+        std::printf("  pixels shaded %llu, necessary %llu: %.3fx the minimum\n",
+                    static_cast<unsigned long long>(l.pixels_shaded),
+                    static_cast<unsigned long long>(l.necessary_pixels),
+                    double(l.pixels_shaded) / double(std::max<uint64_t>(l.necessary_pixels, 1)));
+        std::printf("  first frame after load %.2f ms, steady %.2f ms: %.2fx\n", l.first_frame_ms,
+                    l.steady_ms, l.first_frame_ms / l.steady_ms);
+        if (l.switch_floor >= 0)
+            std::printf("  switch to floor %lld: first frame %.2f ms, steady %.2f ms: %.2fx\n",
+                        static_cast<long long>(l.switch_floor), l.switch_ms, l.switch_steady_ms,
+                        l.switch_ms / l.switch_steady_ms);
+    }
     for (const PeerComparison& p : results.peers) {
         std::printf("\n%s flattened without effects: %s\n", p.scene.c_str(), p.tool.c_str());
         std::printf("  %s: %.1f ms per run, %.1f ms in its --over operations\n", p.tool.c_str(),
@@ -95,6 +110,23 @@ int run_hard_case_table(const std::vector<std::string>& plugins,
     return all_pass ? 0 : 2;  // 2: a cell failed (the table says which)
 }
 
+// --scaling: the scaling series and the cost model, printed as markdown.
+int run_scaling_study(uint32_t frames, const std::vector<std::string>& plugin_paths) {
+    std::vector<fs::path> paths(plugin_paths.begin(), plugin_paths.end());
+    auto device = open_device(paths);
+    if (!device) return fail(device.error().message);
+    std::fprintf(stderr, "acetate-bench: scaling on %s\n", device->context->device_name().c_str());
+    ScalingOptions options;
+    options.frames = frames;
+    auto study = run_scaling(*device->renderer, options, [](const std::string& line) {
+        std::fprintf(stderr, "%s\n", line.c_str());
+    });
+    if (!study) return fail(study.error().message);
+    if (auto clean = device->check_validation(); !clean) return fail(clean.error().message);
+    std::printf("%s", scaling_markdown(study.value()).c_str());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -107,11 +139,14 @@ int main(int argc, char** argv) {
     std::optional<std::string> html, json;
     std::optional<uint32_t> floor;
     std::vector<std::string> plugin_paths;
-    bool no_peers = false, hard_cases = false;
+    bool no_peers = false, hard_cases = false, scaling = false;
     app.add_option("scenes", scenes, "scene files (acetate-scene/1 JSON)");
     app.add_flag("--hard-cases", hard_cases,
                  "instead of scenes: each plugin on alpha 2^-24, colour 65504, 16 floors, 1x1, "
                  "odd sizes and time 1e5 s, as a markdown table");
+    app.add_flag("--scaling", scaling,
+                 "instead of scenes: frame time against floors, effects per floor and canvas, "
+                 "with a fitted cost model, as markdown");
     app.add_option("--plugins", plugins,
                    "comma-separated plugin ids (default: every plugin named)");
     app.add_option("--presets", presets, "comma-separated presets")->capture_default_str();
@@ -135,6 +170,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     if (hard_cases) return run_hard_case_table(split_list(plugins), plugin_paths);
+    if (scaling) return run_scaling_study(options.frames, plugin_paths);
     if (scenes.empty()) return fail("expected at least one scene file (or --hard-cases)");
     for (const auto& s : scenes) options.scenes.emplace_back(s);
     options.plugins = split_list(plugins);

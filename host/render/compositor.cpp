@@ -108,7 +108,9 @@ void Compositor::set_scissor(VkCommandBuffer cmd, const PixelRect& rect) {
 
 void Compositor::bind(VkCommandBuffer cmd, Stage stage, VkImageView primary, VkImageView secondary,
                       VkSampler sampler) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, host_pipeline(stage));
+    // Tile stages draw with their isolation variant in that view (the one load prepared).
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                      host_pipeline(view_variant(stage, options_.view == OutputView::Isolation)));
     VkDescriptorImageInfo images[2] = {
         {sampler, primary, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
         {sampler, secondary, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
@@ -137,7 +139,8 @@ void Compositor::draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor,
     for (const LoadedTile& tile : loaded.tiles) {
         const PixelRect shaded = intersect(tile.pixels, scissor);
         if (shaded.empty()) continue;
-        bind(cmd, stage, tile.texture->view(), tile.texture->view(), pipelines_->linear_sampler());
+        bind(cmd, stage, tile.texture->view(), tile.texture->view(),
+             pipelines_->tile_sampler(tile.one_to_one));
         StagePushConstants push;
         push.rect[0] = float(tile.rect.x);
         push.rect[1] = float(tile.rect.y);
@@ -149,8 +152,6 @@ void Compositor::draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor,
         push.canvas[0] = float(width_);
         push.canvas[1] = float(height_);
         push.floor_index = floor;
-        push.mode =
-            (options_.view == OutputView::Isolation ? 1u : 0u) | (tile.one_to_one ? 2u : 0u);
         vkCmdPushConstants(cmd, pipelines_->layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(push), &push);

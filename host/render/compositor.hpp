@@ -126,6 +126,14 @@ class Compositor {
     // Effect passes of every instance (floors and global), by how they were given.
     EffectPassCounts effect_pass_counts() const;
     const FramePlan& last_plan() const { return last_plan_; }
+    // The fewest pixels any renderer of floors 0..active_floor must shade (what
+    // FrameStats::pixels_shaded is judged against): the output over the canvas; each visible
+    // floor's tiles once each; for a floor with effects, each full-resolution effect pass and
+    // the composite over the exact union of its tiles' pixels (grown by the declared reach of
+    // expanding effects), instanced passes over their quads, passes into an effect's own
+    // targets at those targets' size; global passes likewise. Floors hidden under opaque
+    // floors above count nothing. Bounding-box scissors and clears are what it leaves out.
+    uint64_t necessary_pixels(uint32_t active_floor) const;
     // Why frames are not timed although gpu_timings was asked for ("" when they are).
     const std::string& gpu_timings_warning() const { return timer_warning_; }
     // Render targets held (accumulation, output, floor target and stencil when needed).

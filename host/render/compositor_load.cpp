@@ -140,7 +140,9 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
                 stages.push_back(Stage::CompositeByAlpha);
         if (options.inject) stages.push_back(out->inject_stage());
     }
-    for (Stage stage : stages) ACETATE_TRY(out->pipelines_->ensure(stage, options.format));
+    for (Stage stage : stages)
+        ACETATE_TRY(out->pipelines_->ensure(
+            view_variant(stage, options.view == OutputView::Isolation), options.format));
     // The planner's view of each floor, fixed at load. A floor with a coverage-expanding effect
     // may draw past its tiles (a glow): for planning it covers its tiles grown by the effects'
     // declared reach, or the whole canvas when one declared none.
@@ -237,17 +239,19 @@ Result<void> Compositor::create_targets(const SceneDesc& scene) {
 // frame does not stall (L-warm-switch).
 Result<void> Compositor::warm_pipelines() {
     std::memset(violations_.mapped(), 0, violations_.size());
-    // lavapipe keys its shader variants on texture state too (a power-of-two texture and
-    // another size compile apart), so the tile stages draw once with every distinct texture.
-    std::vector<const GpuImage*> textures;
+    // lavapipe keys its shader variants on texture and sampler state too (a power-of-two
+    // texture and another size compile apart, nearest and linear too), so the tile stages draw
+    // once with every distinct texture and the sampler each of its tiles is drawn with.
+    std::vector<std::pair<const GpuImage*, VkSampler>> textures;
     for (const LoadedFloor& f : resources_->floors())
         for (const LoadedTile& t : f.tiles)
-            if (std::find(textures.begin(), textures.end(), t.texture) == textures.end())
-                textures.push_back(t.texture);
+            if (const std::pair used{t.texture, pipelines_->tile_sampler(t.one_to_one)};
+                std::find(textures.begin(), textures.end(), used) == textures.end())
+                textures.push_back(used);
     const PixelRect pixel{0, 0, 1, 1};
     const bool has_depth = context_.stencil_format() != VK_FORMAT_S8_UINT;
     auto draw_one_pixel = [&](VkCommandBuffer cmd, Stage stage, GpuImage& target, bool stencil,
-                              VkImageView input) {
+                              VkImageView input, VkSampler tile_sampler = VK_NULL_HANDLE) {
         target.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
         VkRenderingAttachmentInfo color = color_attachment(target.view(), true);
         VkRenderingAttachmentInfo stencil_info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -271,7 +275,7 @@ Result<void> Compositor::warm_pipelines() {
         // The same sampler as the real draws: lavapipe's shader variants depend on it too.
         const bool is_tile_stage = stage == Stage::TileToTarget || stage == Stage::TileToAccum;
         bind(cmd, stage, input, input,
-             is_tile_stage ? pipelines_->linear_sampler() : pipelines_->nearest_sampler());
+             is_tile_stage ? tile_sampler : pipelines_->nearest_sampler());
         StagePushConstants push;
         push.rect[2] = push.rect[3] = 1;
         push.canvas[0] = float(width_);
@@ -310,12 +314,14 @@ Result<void> Compositor::warm_pipelines() {
         // Inputs are sampled while another image is the attachment: the output is drawn with
         // the accumulation as input, everything else with a tile texture or the output.
         if (options_.plan.draw_direct)
-            for (const GpuImage* texture : textures)
-                draw_one_pixel(cmd, Stage::TileToAccum, accumulation_, false, texture->view());
+            for (const auto& [texture, sampler] : textures)
+                draw_one_pixel(cmd, Stage::TileToAccum, accumulation_, false, texture->view(),
+                               sampler);
         output_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         if (floor_color_) {
-            for (const GpuImage* texture : textures)
-                draw_one_pixel(cmd, Stage::TileToTarget, *floor_color_, true, texture->view());
+            for (const auto& [texture, sampler] : textures)
+                draw_one_pixel(cmd, Stage::TileToTarget, *floor_color_, true, texture->view(),
+                               sampler);
             if (options_.inject)
                 draw_one_pixel(cmd, inject_stage(), *floor_color_, true, output_.view());
             draw_one_pixel(cmd, Stage::Composite, accumulation_, true, output_.view());

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <string_view>
+
 #include "core/check.hpp"
 #include "render/pipeline_pool.hpp"
 #include "vulkan/graphics_pipeline.hpp"
@@ -26,10 +28,21 @@ const char* stage_name(Stage stage) {
             return "inject-uncovered";
         case Stage::Output:
             return "output";
+        case Stage::TileToTargetIsolation:
+            return "tile-to-target-isolation";
+        case Stage::TileToAccumIsolation:
+            return "tile-to-accumulation-isolation";
         case Stage::Count:
             break;
     }
     return "?";
+}
+
+Stage view_variant(Stage stage, bool isolation) {
+    if (!isolation) return stage;
+    if (stage == Stage::TileToTarget) return Stage::TileToTargetIsolation;
+    if (stage == Stage::TileToAccum) return Stage::TileToAccumIsolation;
+    return stage;
 }
 
 namespace {
@@ -46,8 +59,10 @@ struct StageState {
 StageState state_of(Stage stage) {
     switch (stage) {
         case Stage::TileToTarget:
+        case Stage::TileToTargetIsolation:
             return {"tile.vert", "tile.frag", true, VK_COMPARE_OP_ALWAYS, true, true};
         case Stage::TileToAccum:
+        case Stage::TileToAccumIsolation:
             return {"tile.vert", "tile.frag", false, VK_COMPARE_OP_ALWAYS, false, true};
         case Stage::Composite:
             return {"fullscreen.vert", "composite.frag", true, VK_COMPARE_OP_EQUAL, false, true};
@@ -59,6 +74,21 @@ StageState state_of(Stage stage) {
             return {"fullscreen.vert", "inject.frag", true, VK_COMPARE_OP_NOT_EQUAL, false, false};
         default:
             return {"fullscreen.vert", "output.frag", false, VK_COMPARE_OP_ALWAYS, false, false};
+    }
+}
+
+// tile.frag's variants (see its header), inserted after its #version line: each is a shader of
+// its own.
+const char* defines_of(Stage stage) {
+    switch (stage) {
+        case Stage::TileToTarget:
+            return "#define KEEP_COVERAGE\n";
+        case Stage::TileToTargetIsolation:
+            return "#define KEEP_COVERAGE\n#define ISOLATION\n";
+        case Stage::TileToAccumIsolation:
+            return "#define ISOLATION\n";
+        default:
+            return "";
     }
 }
 
@@ -138,17 +168,20 @@ Result<void> HostPipelines::create_layout() {
 Result<VkPipeline> HostPipelines::create_stage(Stage stage, VkFormat color_format,
                                                VkPipelineCache cache) {
     const StageState s = state_of(stage);
-    auto compile = [&](const char* name) -> Result<VkShaderModule> {
+    auto compile = [&](const char* name, std::string_view defines) -> Result<VkShaderModule> {
         const std::string_view n(name);
-        auto spirv =
-            pool_.spirv(name, n.ends_with(".vert") ? ShaderStage::Vertex : ShaderStage::Fragment,
-                        embedded_shader(name));
+        std::string source(embedded_shader(name));
+        // GLSL wants #version first; the defines go right after it. The pool keys SPIR-V by
+        // the whole source, so each variant compiles once and apart from the others.
+        if (!defines.empty()) source.insert(source.find('\n') + 1, defines);
+        auto spirv = pool_.spirv(
+            name, n.ends_with(".vert") ? ShaderStage::Vertex : ShaderStage::Fragment, source);
         if (!spirv) return spirv.error();
         return pool_.module(*spirv.value());
     };
-    auto vert = compile(s.vertex);
+    auto vert = compile(s.vertex, "");
     if (!vert) return vert.error();
-    auto frag = compile(s.fragment);
+    auto frag = compile(s.fragment, defines_of(stage));
     if (!frag) {
         vkDestroyShaderModule(context_.device(), vert.value(), nullptr);
         return frag.error();
@@ -157,7 +190,7 @@ Result<VkPipeline> HostPipelines::create_stage(Stage stage, VkFormat color_forma
     GraphicsPipelineDesc desc;
     desc.vertex = vert.value();
     desc.fragment = frag.value();
-    const bool is_tile = stage == Stage::TileToTarget || stage == Stage::TileToAccum;
+    const bool is_tile = std::string_view(s.vertex) == "tile.vert";
     desc.topology =
         is_tile ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     desc.color_format = color_format;

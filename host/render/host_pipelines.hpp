@@ -24,7 +24,7 @@ struct StagePushConstants {
     float tint[4] = {0, 0, 0, 0};  // isolation tint, or the fill colour, or the background
     float canvas[2] = {0, 0};      // canvas size in pixels
     uint32_t floor_index = 0;      // violation counter slot; output: the view
-    uint32_t mode = 0;             // tile: tint mode
+    uint32_t mode = 0;             // composite: gate mode (tile stages: unused, see Stage)
 };
 static_assert(sizeof(StagePushConstants) == 48);
 
@@ -36,9 +36,16 @@ enum class Stage {
     InjectCovered,     // test hook: colour -> floor target where stencil == 1
     InjectUncovered,   // test hook: colour -> floor target where stencil != 1
     Output,            // accumulation -> output image over the background, or a debug view
+    // The tile stages as the isolation view draws them: the tint is compiled in, not chosen by a
+    // push constant, because lavapipe runs both sides of such a branch for every pixel.
+    TileToTargetIsolation,
+    TileToAccumIsolation,
     Count
 };
 const char* stage_name(Stage stage);
+// The stage a view draws `stage` with: the isolation variant of a tile stage in the isolation
+// view, otherwise `stage` itself. Load (which prepares pipelines) and bind go through this alike.
+Stage view_variant(Stage stage, bool isolation);
 
 // Process-wide (one per Renderer): the layout and samplers all host stages share, and their
 // pipelines per stage and colour format, kept in the PipelinePool so they survive scenes.
@@ -56,6 +63,13 @@ class HostPipelines {
     VkPipelineLayout layout() const { return layout_; }
     VkSampler linear_sampler() const { return linear_sampler_; }
     VkSampler nearest_sampler() const { return nearest_sampler_; }
+    // The sampler a tile is drawn with. One drawn 1:1 on whole pixels samples nearest, which at
+    // pixel centres reads exactly its own texel (as texelFetch would, without the branch in the
+    // shader that chose between the two); a scaled one filters. lavapipe compiles a shader
+    // variant per sampler state, so the warm-up draws each texture with the samplers it gets.
+    VkSampler tile_sampler(bool one_to_one) const {
+        return one_to_one ? nearest_sampler_ : linear_sampler_;
+    }
 
     // Binding slots of the one push-descriptor set all stages share.
     static constexpr uint32_t kPrimaryImage = 0;    // tile, floor target or accumulation

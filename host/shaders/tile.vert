@@ -3,10 +3,10 @@
 // Vulkan's framebuffer y also points down, so scene space maps to NDC without a flip.
 layout(push_constant) uniform Push {
     vec4 rect;          // x, y, width, height in scene pixels
-    vec4 tint;          // isolation-view tint (rgb), used when bit 0 of mode is set
+    vec4 tint;          // isolation-view tint (rgb), read by the isolation variants
     vec2 canvas;        // canvas size in pixels
     uint floor_index;   // slot in the violation counters
-    uint mode;          // see tile.frag
+    uint mode;          // unused by the tile stages
 } pc;
 layout(location = 0) out vec2 uv;
 void main() {

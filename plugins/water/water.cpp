@@ -129,8 +129,8 @@ class Water final : public Effect {
                     kIndoorWaves,    kCaustics,     kFoam,       kFoamWidth,     kFoamBreakup,
                     kFoamColor,      kAmbient,      kGlints,     kRoughness,     kTaps,
                     kCausticOctaves, kFieldDivisor, kMaxLights};
-        e.presets = quality_presets({{kTaps, {1, 2, 4, 8}},
-                                     {kCausticOctaves, {1, 2, 2, 3}},
+        e.presets = quality_presets({{kTaps, {1, 2, 6, 8}},
+                                     {kCausticOctaves, {1, 2, 3, 3}},
                                      {kFieldDivisor, {4, 2, 1, 1}},
                                      {kMaxLights, {4, 8, 16, 64}}});
         return e;

@@ -1,0 +1,89 @@
+// Compositor::necessary_pixels (compositor.hpp): the floor of what any renderer of this frame
+// must shade, so FrameStats::pixels_shaded can be judged against it.
+#include <algorithm>
+#include <set>
+
+#include "render/compositor.hpp"
+
+namespace acetate {
+namespace {
+
+// The exact area of a union of rects (coordinate compression: scenes have few tiles a floor).
+uint64_t union_area(const std::vector<PixelRect>& rects) {
+    std::set<int64_t> xs, ys;
+    for (const PixelRect& r : rects)
+        if (!r.empty()) {
+            xs.insert({r.x0, r.x1});
+            ys.insert({r.y0, r.y1});
+        }
+    const std::vector<int64_t> x(xs.begin(), xs.end()), y(ys.begin(), ys.end());
+    uint64_t area = 0;
+    for (size_t i = 0; i + 1 < x.size(); ++i)
+        for (size_t j = 0; j + 1 < y.size(); ++j) {
+            const PixelRect cell{x[i], y[j], x[i + 1], y[j + 1]};
+            const bool covered = std::any_of(rects.begin(), rects.end(), [&](const PixelRect& r) {
+                return !r.empty() && r.x0 <= cell.x0 && cell.x1 <= r.x1 && r.y0 <= cell.y0 &&
+                       cell.y1 <= r.y1;
+            });
+            if (covered) area += uint64_t(cell.area());
+        }
+    return area;
+}
+
+}  // namespace
+
+uint64_t Compositor::necessary_pixels(uint32_t active_floor) const {
+    const PixelRect canvas{0, 0, int64_t(width_), int64_t(height_)};
+    // Floors the planner finds hidden under opaque floors above cannot show: nothing of them
+    // is necessary.
+    const FramePlan plan = plan_frame(width_, height_, geometry_, active_floor, PlanOptions{});
+    uint64_t pixels = uint64_t(canvas.area());  // the output pass writes every pixel
+    for (const FloorStep& step : plan.steps) {
+        if (step.path == FloorPath::Skipped) continue;
+        const LoadedFloor& floor = resources_->floors()[step.floor];
+        std::vector<PixelRect> covered;
+        for (const LoadedTile& tile : floor.tiles) {
+            const PixelRect shaded = intersect(tile.pixels, canvas);
+            pixels += uint64_t(shaded.area());  // each layer's pixels are blended once
+            covered.push_back(shaded);
+        }
+        const auto& effects = floor_effects_[step.floor];
+        if (effects.empty() || !effects_enabled_) continue;
+        // What the floor's effects may change: its tiles' pixels, each grown by the reach the
+        // expanding effects declared (all of the canvas for one that declared none).
+        int64_t reach = 0;
+        bool unbounded = false;
+        for (const auto& e : effects)
+            if (e->expanding) {
+                if (e->reach)
+                    reach += *e->reach;
+                else
+                    unbounded = true;
+            }
+        std::vector<PixelRect> grown;
+        for (const PixelRect& r : covered)
+            grown.push_back(intersect(
+                canvas, PixelRect{r.x0 - reach, r.y0 - reach, r.x1 + reach, r.y1 + reach}));
+        const uint64_t area = unbounded ? uint64_t(canvas.area()) : union_area(grown);
+        for (const auto& e : effects)
+            for (const EffectPassRuntime& pass : e->passes) {
+                if (pass.instance_count)
+                    pixels += pass.instanced_pixels;  // its quads bound what it draws
+                else if (pass.output == "result")
+                    pixels += area;
+                else  // the effect's own target (a mip level, a mask): all of it
+                    pixels += uint64_t(e->targets.at(pass.output)->width()) *
+                              e->targets.at(pass.output)->height();
+            }
+        pixels += area;  // the composite over the accumulation
+    }
+    if (global_effects_enabled_)
+        for (const auto& e : global_effects_)
+            for (const EffectPassRuntime& pass : e->passes)
+                pixels += pass.output == "result" ? uint64_t(canvas.area())
+                                                  : uint64_t(e->targets.at(pass.output)->width()) *
+                                                        e->targets.at(pass.output)->height();
+    return pixels;
+}
+
+}  // namespace acetate
