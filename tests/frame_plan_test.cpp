@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <ostream>
 #include <vector>
 
@@ -373,6 +374,45 @@ TEST(PlanFrame, ToStringNamesEveryPath) {
     EXPECT_STREQ(to_string(FloorPath::Skipped), "skipped");
     EXPECT_STREQ(to_string(FloorPath::Direct), "direct");
     EXPECT_STREQ(to_string(FloorPath::ThroughTarget), "through-target");
+}
+
+// disjoint_union: every pixel of the union in exactly one rect, none outside it, checked pixel by
+// pixel against the input rects on small grids.
+void expect_exact_disjoint_cover(const std::vector<PixelRect>& rects) {
+    const std::vector<PixelRect> cover = disjoint_union(rects);
+    uint64_t union_pixels = 0;
+    for (int64_t y = -2; y < 24; ++y)
+        for (int64_t x = -2; x < 24; ++x) {
+            auto inside = [&](const PixelRect& r) {
+                return r.x0 <= x && x < r.x1 && r.y0 <= y && y < r.y1;
+            };
+            const bool in_union = std::any_of(rects.begin(), rects.end(), inside);
+            const auto hits = std::count_if(cover.begin(), cover.end(), inside);
+            ASSERT_EQ(hits, in_union ? 1 : 0) << "pixel " << x << "," << y;
+            union_pixels += in_union;
+        }
+    EXPECT_EQ(union_area(rects), union_pixels);
+}
+
+TEST(DisjointUnion, CoversTheUnionExactlyOnce) {
+    expect_exact_disjoint_cover({});
+    expect_exact_disjoint_cover({{2, 3, 9, 7}});
+    expect_exact_disjoint_cover({{0, 0, 4, 4}, {12, 10, 20, 20}});             // far apart
+    expect_exact_disjoint_cover({{0, 0, 10, 10}, {5, 5, 15, 15}});             // overlapping
+    expect_exact_disjoint_cover({{0, 0, 20, 4}, {0, 0, 4, 20}});               // an L
+    expect_exact_disjoint_cover({{1, 1, 5, 5}, {1, 1, 5, 5}, {3, 0, 4, 22}});  // duplicates
+    expect_exact_disjoint_cover({{0, 0, 0, 5}, {4, 4, 6, 6}});                 // an empty rect
+}
+
+TEST(DisjointUnion, KeepsARectOrAColumnOfRectsWhole) {
+    EXPECT_EQ(disjoint_union({{2, 3, 9, 7}}), (std::vector<PixelRect>{{2, 3, 9, 7}}));
+    // Two rects stacked with the same x span become one.
+    EXPECT_EQ(disjoint_union({{0, 0, 8, 4}, {0, 4, 8, 9}}), (std::vector<PixelRect>{{0, 0, 8, 9}}));
+    // Three houses apart: three rects, their area and no more.
+    const std::vector<PixelRect> houses{
+        {150, 96, 502, 360}, {660, 60, 836, 300}, {560, 350, 800, 490}};
+    EXPECT_EQ(disjoint_union(houses).size(), 3u);
+    EXPECT_EQ(union_area(houses), 352u * 264 + 176u * 240 + 240u * 140);
 }
 
 }  // namespace

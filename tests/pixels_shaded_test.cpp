@@ -108,5 +108,38 @@ TEST_F(PixelsShaded, OptimisedFrameMatchesTheUnoptimisedOne) {
     EXPECT_LE(difference, tolerance) << "images in " << save_failure_images("optimised", a, b);
 }
 
+// A floor with an effect whose tiles lie far apart (houses on a map) shades their union, not their
+// bounding box: each "result" pass and the composite draw once per rect of the union. The image is
+// the one the whole-canvas frame (scissoring off) gives.
+TEST_F(PixelsShaded, AnEffectOnTilesFarApartShadesTheirUnionNotTheirBoundingBox) {
+    SceneDesc scene = make_scene(120, 80, {0, 0, 0, 1});
+    const uint32_t floor = add_floor(scene, "houses");
+    add_tile(scene, floor, solid(20, 10, {0.4f, 0.3f, 0.2f, 1}), {5, 5, 20, 10});
+    add_tile(scene, floor, solid(16, 12, {0.2f, 0.3f, 0.4f, 0.5f}), {90, 60, 16, 12});
+    add_tile(scene, floor, solid(10, 10, {0.3f, 0.4f, 0.2f, 0.8f}), {8, 10, 10, 10});  // overlaps
+    scene.floors[floor].lights = {{{50, 40}, 90, {1, 0.9f, 0.8f}, 2.0f}};
+    EffectRef lighting;
+    lighting.plugin = "acetate.lighting";
+    lighting.where = "floors[0].effects[0]";
+    scene.floors[floor].effects = {lighting};
+    auto compositor = load(scene);
+    ASSERT_TRUE(compositor);
+    FrameStats stats;
+    const ImageRGBA image = render(*compositor, floor, &stats);
+    const FloorFrameReport& report = floor_report(stats, floor);
+    ASSERT_EQ(report.path, "through-target");
+    // The union: 20x10 + 16x12 + the 10x10 tile less its 10x5 overlap with the first.
+    const uint64_t union_pixels = 20 * 10 + 16 * 12 + 10 * 10 - 10 * 5;
+    const uint64_t tile_pixels = 20 * 10 + 16 * 12 + 10 * 10;
+    // Tiles, then lighting's one pass and the composite over the union (the bounding box,
+    // 101x67, would be 6767 pixels a pass).
+    EXPECT_EQ(report.pixels_shaded, tile_pixels + 2 * union_pixels);
+    EXPECT_EQ(compositor->necessary_pixels(floor), 120u * 80 + tile_pixels + 2 * union_pixels);
+
+    auto reference = load(scene, unoptimised());
+    ASSERT_TRUE(reference);
+    EXPECT_EQ(max_abs_difference(image, render(*reference, floor)), 0.0);
+}
+
 }  // namespace
 }  // namespace acetate::test

@@ -55,4 +55,58 @@ bool covered_by_union(const PixelRect& target, const std::vector<PixelRect>& cov
     return true;
 }
 
+std::vector<PixelRect> disjoint_union(const std::vector<PixelRect>& rects) {
+    std::vector<int64_t> xs, ys;
+    for (const PixelRect& r : rects)
+        if (!r.empty()) {
+            xs.insert(xs.end(), {r.x0, r.x1});
+            ys.insert(ys.end(), {r.y0, r.y1});
+        }
+    std::sort(xs.begin(), xs.end());
+    xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+    std::sort(ys.begin(), ys.end());
+    ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+    std::vector<PixelRect> out;
+    std::vector<size_t> open;  // rects of `out` that end at the current band's top edge
+    for (size_t j = 0; j + 1 < ys.size(); ++j) {
+        std::vector<size_t> next;
+        for (size_t i = 0; i + 1 < xs.size();) {
+            auto covered = [&](size_t k) {
+                const PixelRect cell{xs[k], ys[j], xs[k + 1], ys[j + 1]};
+                return std::any_of(rects.begin(), rects.end(), [&](const PixelRect& r) {
+                    return !r.empty() && r.x0 <= cell.x0 && cell.x1 <= r.x1 && r.y0 <= cell.y0 &&
+                           cell.y1 <= r.y1;
+                });
+            };
+            if (!covered(i)) {
+                ++i;
+                continue;
+            }
+            size_t end = i + 1;
+            while (end + 1 < xs.size() && covered(end)) ++end;
+            const PixelRect run{xs[i], ys[j], xs[end], ys[j + 1]};
+            // The same x span directly above: grow that rect instead of starting one.
+            auto above = std::find_if(open.begin(), open.end(), [&](size_t k) {
+                return out[k].x0 == run.x0 && out[k].x1 == run.x1 && out[k].y1 == run.y0;
+            });
+            if (above != open.end()) {
+                out[*above].y1 = run.y1;
+                next.push_back(*above);
+            } else {
+                out.push_back(run);
+                next.push_back(out.size() - 1);
+            }
+            i = end;
+        }
+        open = std::move(next);
+    }
+    return out;
+}
+
+uint64_t union_area(const std::vector<PixelRect>& rects) {
+    uint64_t area = 0;
+    for (const PixelRect& r : disjoint_union(rects)) area += r.area();
+    return area;
+}
+
 }  // namespace acetate

@@ -22,5 +22,11 @@ PixelRect intersect(const PixelRect& a, const PixelRect& b);
 PixelRect bounding_union(const PixelRect& a, const PixelRect& b);
 // True when every pixel of `target` lies in at least one of `cover`.
 bool covered_by_union(const PixelRect& target, const std::vector<PixelRect>& cover);
+// The union of `rects` as rects that do not overlap, each pixel of the union in exactly one:
+// bands between the rects' y edges, cut into runs between their x edges, and a run joined to
+// the one above it when both span the same x (so one rect, or a row of rects, stays whole).
+std::vector<PixelRect> disjoint_union(const std::vector<PixelRect>& rects);
+// The exact number of pixels in the union of `rects`.
+uint64_t union_area(const std::vector<PixelRect>& rects);
 
 }  // namespace acetate

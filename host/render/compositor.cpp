@@ -203,6 +203,12 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     const auto& effects = floor_effects_[step.floor];
     const bool expanding =
         std::any_of(effects.begin(), effects.end(), [](const auto& e) { return e->expanding; });
+    // Where the effects' "result" passes and the composite draw: the tiles' union as rects
+    // (shading_rects_), unless the plan scissors to the whole canvas.
+    const std::vector<PixelRect>* rects =
+        !expanding && options_.plan.scissor_to_coverage && !shading_rects_[step.floor].empty()
+            ? &shading_rects_[step.floor]
+            : nullptr;
     // Effects may sample around a pixel, so with effects the whole target starts transparent:
     // nothing another floor left in it can be read.
     clear_all = clear_all || !effects.empty();
@@ -264,13 +270,19 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
             io.blank_mask = resources_->blank_mask();
             io.result_scissor =
                 effect->expanding || expanding ? expansion_areas_[step.floor] : step.scissor;
+            io.result_rects = rects;
             io.time = time;
             io.canvas_width = width_;
             io.canvas_height = height_;
             io.timer = timer_.get();
             // What "result" holds before this effect writes it: the poison where its passes
             // shade, the zeros (or tiles) of today elsewhere.
-            if (options_.poison) fill_area(cmd, *next, io.result_scissor, *options_.poison);
+            if (options_.poison) {
+                if (rects)
+                    for (const PixelRect& r : *rects) fill_area(cmd, *next, r, *options_.poison);
+                else
+                    fill_area(cmd, *next, io.result_scissor, *options_.poison);
+            }
             record_effect(cmd, renderer_, *effect, io, report);
             std::swap(current, next);
         }
@@ -298,11 +310,21 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     vkCmdPushConstants(cmd, pipelines_->layout(),
                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
                        &push);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
+    uint64_t composited = composite_area.area();
+    if (rects) {
+        composited = 0;
+        for (const PixelRect& r : *rects) {
+            set_scissor(cmd, r);
+            vkCmdDraw(cmd, 3, 1, 0, 0);
+            composited += r.area();
+        }
+    } else {
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+    }
     vkCmdEndRendering(cmd);
     if (timer_) timer_->mark(cmd, fmt::format("floor {} composite", step.floor));
     ++report.passes;
-    report.pixels_shaded += composite_area.area();
+    report.pixels_shaded += composited;
 }
 
 void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, double time) {

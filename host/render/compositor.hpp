@@ -187,6 +187,10 @@ class Compositor {
     GpuBuffer violations_;
     std::vector<FloorGeometry> geometry_;     // what the planner works from (fixed at load)
     std::vector<PixelRect> expansion_areas_;  // per floor; empty unless it has expanding effects
+    // Per floor with effects that do not expand: the union of its tiles' pixels as disjoint
+    // rects, where its "result" passes and its composite draw (one draw each), so tiles far
+    // apart do not shade their whole bounding box. Empty: draw over the floor's scissor.
+    std::vector<std::vector<PixelRect>> shading_rects_;
     LoadStats load_stats_;
     FramePlan last_plan_;
     std::unique_ptr<GpuTimer> timer_;  // only with CompositorOptions::gpu_timings

@@ -153,6 +153,20 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
             std::any_of(effects.begin(), effects.end(), [](const auto& e) { return e->expanding; });
         out->expansion_areas_.push_back(expanding ? out->expansion_area(scene, f) : PixelRect{});
         if (expanding) out->geometry_[f].coverage = out->expansion_areas_.back();
+        // A floor whose tiles lie far apart (houses, trees) would shade their whole bounding
+        // box in every effect pass; its exact union as a few rects, one draw each, does not.
+        // Past a handful of rects the draws cost more than the pixels they save.
+        constexpr size_t kMaxShadingRects = 16;
+        std::vector<PixelRect> rects;
+        if (!effects.empty() && !expanding) {
+            std::vector<PixelRect> tiles;
+            for (const LoadedTile& tile : out->resources_->floors()[f].tiles)
+                tiles.push_back(intersect(
+                    tile.pixels, PixelRect{0, 0, int64_t(scene.width), int64_t(scene.height)}));
+            rects = disjoint_union(tiles);
+            if (rects.size() > kMaxShadingRects) rects.clear();
+        }
+        out->shading_rects_.push_back(std::move(rects));
     }
     ACETATE_TRY(out->warm_pipelines());
     if (options.gpu_timings) {

@@ -172,16 +172,32 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
         writes.push_back(write);
         context.push_descriptor_fn()(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(), 0,
                                      uint32_t(writes.size()), writes.data());
-        if (pass.instance_count)
+        // A "result" pass over a floor whose tiles lie apart draws once per rect of their
+        // union, so the gaps in their bounding box are never shaded.
+        const bool per_rect =
+            pass.output == "result" && !pass.instance_count && io.result_rects && !io.warm_up;
+        uint64_t rect_pixels = 0;
+        if (pass.instance_count) {
             vkCmdDraw(cmd, 4, io.warm_up ? 1 : pass.instance_count, 0, 0);
-        else
+        } else if (per_rect) {
+            for (const PixelRect& r : *io.result_rects) {
+                const VkRect2D rect{{int32_t(r.x0), int32_t(r.y0)},
+                                    {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0)}};
+                vkCmdSetScissor(cmd, 0, 1, &rect);
+                vkCmdDraw(cmd, 3, 1, 0, 0);
+                rect_pixels += r.area();
+            }
+        } else {
             vkCmdDraw(cmd, 3, 1, 0, 0);
+        }
         vkCmdEndRendering(cmd);
         output->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         if (io.timer) io.timer->mark(cmd, pass.label);
         ++report.passes;
         // An instanced pass shades its quads (clipped to the canvas; overlaps count twice).
-        report.pixels_shaded += pass.instance_count ? pass.instanced_pixels : scissor.area();
+        report.pixels_shaded += pass.instance_count ? pass.instanced_pixels
+                                : per_rect          ? rect_pixels
+                                                    : scissor.area();
     }
 }
 

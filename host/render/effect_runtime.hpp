@@ -95,6 +95,8 @@ struct EffectIo {
     const std::map<std::string, GpuImage>* masks = nullptr;  // the floor's own
     const GpuImage* blank_mask = nullptr;  // scene-size, transparent: for kinds the floor lacks
     PixelRect result_scissor;              // the area "result" passes shade
+    // When set: "result" passes draw once per rect instead (disjoint, inside result_scissor).
+    const std::vector<PixelRect>* result_rects = nullptr;
     double time = 0;  // seconds; phases and the clock are reduced from it in double
     uint32_t canvas_width = 0, canvas_height = 0;
     bool warm_up = false;       // shade one pixel per pass (load-time pipeline warm-up)

@@ -1,36 +1,8 @@
 // Compositor::necessary_pixels (compositor.hpp): the floor of what any renderer of this frame
 // must shade, so FrameStats::pixels_shaded can be judged against it.
-#include <algorithm>
-#include <set>
-
 #include "render/compositor.hpp"
 
 namespace acetate {
-namespace {
-
-// The exact area of a union of rects (coordinate compression: scenes have few tiles a floor).
-uint64_t union_area(const std::vector<PixelRect>& rects) {
-    std::set<int64_t> xs, ys;
-    for (const PixelRect& r : rects)
-        if (!r.empty()) {
-            xs.insert({r.x0, r.x1});
-            ys.insert({r.y0, r.y1});
-        }
-    const std::vector<int64_t> x(xs.begin(), xs.end()), y(ys.begin(), ys.end());
-    uint64_t area = 0;
-    for (size_t i = 0; i + 1 < x.size(); ++i)
-        for (size_t j = 0; j + 1 < y.size(); ++j) {
-            const PixelRect cell{x[i], y[j], x[i + 1], y[j + 1]};
-            const bool covered = std::any_of(rects.begin(), rects.end(), [&](const PixelRect& r) {
-                return !r.empty() && r.x0 <= cell.x0 && cell.x1 <= r.x1 && r.y0 <= cell.y0 &&
-                       cell.y1 <= r.y1;
-            });
-            if (covered) area += uint64_t(cell.area());
-        }
-    return area;
-}
-
-}  // namespace
 
 uint64_t Compositor::necessary_pixels(uint32_t active_floor) const {
     const PixelRect canvas{0, 0, int64_t(width_), int64_t(height_)};

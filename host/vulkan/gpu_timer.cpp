@@ -22,7 +22,8 @@ Result<std::unique_ptr<GpuTimer>> GpuTimer::create(VulkanContext& context, uint3
     timer->valid_mask_ = bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
     timer->nanoseconds_per_tick_ = double(context.properties().limits.timestampPeriod);
     timer->names_.reserve(capacity);
-    VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    VkQueryPoolCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
     info.queryType = VK_QUERY_TYPE_TIMESTAMP;
     info.queryCount = timer->capacity_;
     if (VkResult r = vkCreateQueryPool(context.device(), &info, nullptr, &timer->pool_);
