@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "render_fixture.hpp"
@@ -16,7 +17,10 @@ namespace {
 
 struct BloomParams {
     double threshold = 1.0, knee = 0.5, intensity = 0.6, radius = 1.0;
-    int levels = 5;
+    int levels = 5;         // the chain's last level
+    int first = 1;          // its first: 1 = half, 2 = quarter, 3 = eighth size
+    bool fine_tent = true;  // the finest upsample's tent (off: one bilinear tap)
+    int count() const { return levels - first + 1; }
 };
 
 // ---- The CPU model: the same passes, taps, grid and clamping as plugins/bloom, in double. ----
@@ -70,25 +74,32 @@ Rgb bright(Rgb c, const BloomParams& p) {
 
 // Returns the output rgba (premultiplied) for input rgba `in` (the composite the effect sees).
 std::vector<std::array<double, 4>> cpu_bloom(const ImageRGBA& in, const BloomParams& p) {
-    const int W = int(in.width), H = int(in.height), N = p.levels;
+    const int W = int(in.width), H = int(in.height), N = p.count();
+    const double D = 1 << p.first;  // the first level's divisor
     Level prev(W, H);
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x)
             for (int c = 0; c < 3; ++c) prev.at(x, y)[c] = in.at(x, y)[c];
     std::vector<Level> down;
-    for (int k = 1; k <= N; ++k) {
+    for (int k = p.first; k <= p.levels; ++k) {
         Level out(level_size(W, k), level_size(H, k));
-        const Level& src = k == 1 ? prev : down.back();
+        const bool prefilter = k == p.first;
+        const Level& src = prefilter ? prev : down.back();
+        const double scale = prefilter ? D : 2;  // DIVISOR, or 2 for a down pass
         for (int j = 0; j < out.h; ++j)
             for (int i = 0; i < out.w; ++i) {
-                const double cx = 2 * i + 1, cy = 2 * j + 1;  // 2 * gl_FragCoord
-                Rgb taps[4] = {src.bilinear(cx - 1, cy - 1), src.bilinear(cx + 1, cy - 1),
-                               src.bilinear(cx - 1, cy + 1), src.bilinear(cx + 1, cy + 1)};
+                const double cx = scale * (i + 0.5), cy = scale * (j + 0.5);  // x gl_FragCoord
+                // Taps on texel corners: offsets -1, +1 per axis, or -3, -1, +1, +3 at 8.
+                const int n = std::max(2, int(scale) / 2);
+                std::vector<Rgb> taps;
+                for (int ty = 0; ty < n; ++ty)
+                    for (int tx = 0; tx < n; ++tx)
+                        taps.push_back(src.bilinear(cx + 2 * tx + 1 - n, cy + 2 * ty + 1 - n));
                 Rgb sum{};
                 double weights = 0;
                 for (Rgb& t : taps) {
-                    double w = 0.25;
-                    if (k == 1) {
+                    double w = 1;
+                    if (prefilter) {
                         t = bright(t, p);
                         w = 1 / (1 + luma(t));  // Karis average
                     }
@@ -99,16 +110,18 @@ std::vector<std::array<double, 4>> cpu_bloom(const ImageRGBA& in, const BloomPar
             }
         down.push_back(std::move(out));
     }
-    Level bloom = down.back();  // upK = tent(up(K+1) or downN) + downK
-    for (int k = N - 1; k >= 1; --k) {
-        Level out = down[size_t(k - 1)];
+    Level bloom = down.back();  // upK = tent(up(K+1) or down(last)) + downK
+    for (int k = p.levels - 1; k >= p.first; --k) {
+        Level out = down[size_t(k - p.first)];
         const double r = p.radius;
+        const int reach = k == p.first && !p.fine_tent ? 0 : 1;  // one tap, or the 3x3 tent
         for (int j = 0; j < out.h; ++j)
             for (int i = 0; i < out.w; ++i) {
                 const double cx = 0.5 * (i + 0.5), cy = 0.5 * (j + 0.5);
-                for (int dy = -1; dy <= 1; ++dy)
-                    for (int dx = -1; dx <= 1; ++dx) {
-                        const double w = (2 - std::abs(dx)) * (2 - std::abs(dy)) / 16.0;
+                for (int dy = -reach; dy <= reach; ++dy)
+                    for (int dx = -reach; dx <= reach; ++dx) {
+                        const double w =
+                            reach ? (2 - std::abs(dx)) * (2 - std::abs(dy)) / 16.0 : 1.0;
                         const Rgb s = bloom.bilinear(cx + dx * r, cy + dy * r);
                         for (int c = 0; c < 3; ++c) out.at(i, j)[c] += w * s[c];
                     }
@@ -119,7 +132,7 @@ std::vector<std::array<double, 4>> cpu_bloom(const ImageRGBA& in, const BloomPar
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             const float* c = in.at(x, y);
-            const Rgb b = bloom.bilinear(0.5 * (x + 0.5), 0.5 * (y + 0.5));
+            const Rgb b = bloom.bilinear((x + 0.5) / D, (y + 0.5) / D);
             std::array<double, 4>& o = result[size_t(y) * W + x];
             double added = 0;
             for (int k = 0; k < 3; ++k) {
@@ -146,11 +159,9 @@ class BloomTest : public RenderTest {
         return ref;
     }
     static nlohmann::json to_json(const BloomParams& p) {
-        return {{"threshold", p.threshold},
-                {"knee", p.knee},
-                {"intensity", p.intensity},
-                {"levels", p.levels},
-                {"radius", p.radius}};
+        return {{"threshold", p.threshold}, {"knee", p.knee},     {"intensity", p.intensity},
+                {"levels", p.levels},       {"radius", p.radius}, {"first_level", p.first},
+                {"fine_tent", p.fine_tent}};
     }
 
     // One floor holding `tile` over the whole canvas, transparent background, bloom global.
@@ -227,23 +238,37 @@ TEST_F(BloomTest, MatchesTheCpuModelForEveryPreset) {
         BloomParams p;
     };
     std::vector<Case> cases;
-    const std::pair<const char*, int> presets[] = {
-        {"low", 3}, {"medium", 4}, {"high", 5}, {"ultra", 6}};
-    for (const auto& [name, levels] : presets) {
+    // The presets as bloom.cpp declares them: (first level, last level, fine tent).
+    const std::tuple<const char*, int, int, bool> presets[] = {
+        {"low", 3, 6, true}, {"medium", 2, 6, true}, {"high", 1, 6, false}, {"ultra", 1, 6, true}};
+    for (const auto& [name, first, levels, fine_tent] : presets) {
         BloomParams p;
+        p.first = first;
         p.levels = levels;
+        p.fine_tent = fine_tent;
         cases.push_back({name, p});
     }
     BloomParams one;
     one.levels = 1;
     cases.push_back({"", one});
+    BloomParams one_quarter;  // a single quarter-size level: the prefilter feeds the composite
+    one_quarter.first = one_quarter.levels = 2;
+    cases.push_back({"", one_quarter});
     BloomParams deep{0.5, 0.2, 2.0, 1.25, 8};
     cases.push_back({"", deep});
+    BloomParams deep_quarter{0.5, 0.2, 2.0, 1.25, 8, 2, false};
+    cases.push_back({"", deep_quarter});
+    BloomParams one_eighth;  // the 16-tap prefilter straight into the composite
+    one_eighth.first = one_eighth.levels = 3;
+    cases.push_back({"", one_eighth});
 
     const ImageRGBA in = input_of(tile, BloomParams{});
     ASSERT_EQ(in.width, 61u);
     for (const Case& c : cases) {
-        SCOPED_TRACE(c.preset.empty() ? "levels " + std::to_string(c.p.levels) : c.preset);
+        const std::string label = "levels " + std::to_string(c.p.first) + ".." +
+                                  std::to_string(c.p.levels) +
+                                  (c.p.fine_tent ? "" : ", one-tap finest upsample");
+        SCOPED_TRACE(c.preset.empty() ? label : c.preset + ", " + label);
         const EffectRef ref = c.preset.empty() ? bloom(to_json(c.p)) : bloom({}, c.preset);
         const ImageRGBA out = run(scene_with(tile, ref));
         ASSERT_EQ(out.width, 61u);
@@ -260,7 +285,7 @@ TEST_F(BloomTest, MatchesTheCpuModelForEveryPreset) {
                 for (int k = 0; k < 3; ++k) added_max = std::max(added_max, e[k] - in_px[k]);
                 for (int k = 0; k < 4; ++k) {
                     const double added = k < 3 ? e[k] - in_px[k] : std::min(1.0, added_max);
-                    const double tol = u * std::fabs(e[k]) + 2 * c.p.levels * u * added + 1e-6;
+                    const double tol = u * std::fabs(e[k]) + 2 * c.p.count() * u * added + 1e-6;
                     const double err = std::fabs(got[k] - e[k]);
                     worst = std::max(worst, err / tol);
                     if (err > tol && ++failures <= 5)
@@ -269,17 +294,21 @@ TEST_F(BloomTest, MatchesTheCpuModelForEveryPreset) {
                             << ", model " << e[k] << " (tolerance " << tol << ")";
                 }
             }
-        std::printf("[ bloom    ] %-8s levels %d: worst error %.3f of tolerance\n",
-                    c.preset.c_str(), c.p.levels, worst);
+        std::printf("[ bloom    ] %-8s %s: worst error %.3f of tolerance\n", c.preset.c_str(),
+                    label.c_str(), worst);
         if (failures) {
             ImageRGBA model(in.width, in.height);
             for (size_t i = 0; i < expected.size(); ++i)
                 for (int k = 0; k < 4; ++k) model.pixels[i * 4 + k] = float(expected[i][k]);
             ADD_FAILURE() << failures << " channels off; images in "
-                          << save_failure_images("bloom_" + std::to_string(c.p.levels), out, model);
+                          << save_failure_images("bloom_" + std::to_string(c.p.first) + "_" +
+                                                     std::to_string(c.p.levels),
+                                                 out, model);
         }
-        // The bloom is really there: the pixel beside the 8/6/2 spot gained light.
-        EXPECT_GT(out.at(23, 14)[0], in.at(23, 14)[0] + 0.05f);
+        // The bloom is really there: the pixel beside the 8/6/2 spot gained light (0.02 with
+        // the low preset, whose eighth-size first level spreads the spot widest; over 0.05 in
+        // every other case).
+        EXPECT_GT(out.at(23, 14)[0], in.at(23, 14)[0] + 0.01f);
     }
 }
 
@@ -312,14 +341,14 @@ class BloomEnergyTest : public BloomTest {
         double ratio[3];      // added blob energy / (intensity x blob energy), per channel
         double precision[3];  // the bound above
     };
-    Balance balance(uint32_t x0, uint32_t y0, uint32_t w, uint32_t h, int levels) {
+    Balance balance(uint32_t x0, uint32_t y0, uint32_t w, uint32_t h, int levels, int first = 1) {
         const uint32_t W = 256, H = 256;
         const float grey = 0.05f;
         const float blue = float(grey / 0.0722);  // luminance 0.0722 x blue == grey
         ImageRGBA tile = solid(W, H, {grey, grey, grey, 1});
         for (uint32_t y = y0; y < y0 + h; ++y)
             for (uint32_t x = x0; x < x0 + w; ++x) put(tile, x, y, {0, 0, blue, 1});
-        BloomParams p{0.0, 0.0, 0.6, 1.0, levels};
+        BloomParams p{0.0, 0.0, 0.6, 1.0, levels, first};
         CompositorOptions options;
         options.format = VK_FORMAT_R32G32B32A32_SFLOAT;
         const ImageRGBA in = input_of(tile, p, options);
@@ -336,7 +365,7 @@ class BloomEnergyTest : public BloomTest {
                     const double a = double(out.at(x, y)[c]) - in.at(x, y)[c];
                     energy += in.at(x, y)[c];
                     added += a;
-                    bound += std::ldexp(in.at(x, y)[c] + 25 * levels * std::fabs(a), -24);
+                    bound += std::ldexp(in.at(x, y)[c] + 25 * p.count() * std::fabs(a), -24);
                 }
             const double ground = double(grey) * W * H;
             const double blob_energy = energy - ground;  // negative for red and green
@@ -356,6 +385,20 @@ TEST_F(BloomEnergyTest, InteriorLightIsNeitherLostNorInvented) {
         EXPECT_NEAR(b.ratio[c], 1.0, b.precision[c]) << "channel " << c;
         std::printf("[ bloom    ] interior blob: channel %d energy ratio %.7f (bound 1 +- %.1e)\n",
                     c, b.ratio[c], b.precision[c]);
+    }
+}
+
+TEST_F(BloomEnergyTest, AQuarterSizeChainBalancesToo) {
+    // Levels 2..4 (the low preset's chain), blob [96,160)^2: the prefilter's 4x4 box at
+    // DIVISOR 4 reads each texel once, the down passes spread 4 and 8 px, the tents 1.5 coarse
+    // texels (24 + 12 px) and the composite's quarter-size tap 4 px: nothing reaches an edge.
+    const Balance b = balance(96, 96, 64, 64, 4, 2);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(b.ratio[c], 1.0, b.precision[c]) << "channel " << c;
+        std::printf(
+            "[ bloom    ] quarter-size chain: channel %d energy ratio %.7f (bound 1 +- "
+            "%.1e)\n",
+            c, b.ratio[c], b.precision[c]);
     }
 }
 
@@ -484,13 +527,17 @@ TEST_F(BloomTest, ASceneWithoutBloomHoldsNoBloomTargets) {
     std::vector<std::string> names;
     for (const TargetInfo& t : with->targets_held())
         if (t.name.find("acetate.bloom") != std::string::npos) names.push_back(t.name);
-    // low = 3 levels: down1..down3 and up1..up2, ceil(canvas / 2^k) in size.
-    EXPECT_EQ(names.size(), 5u);
-    for (const TargetInfo& t : with->targets_held())
+    // low = levels 3..6: down3..down6 and up3..up5, ceil(canvas / 2^k) in size; no half- or
+    // quarter-size target at all.
+    EXPECT_EQ(names.size(), 7u);
+    for (const TargetInfo& t : with->targets_held()) {
+        for (const char* finer : {"down1", "up1", "down2", "up2"})
+            EXPECT_NE(t.name, std::string("acetate.bloom.") + finer);
         if (t.name == "acetate.bloom.down3") {
             EXPECT_EQ(t.width, 5u);
             EXPECT_EQ(t.height, 4u);
         }
+    }
     scene.global_effects.clear();
     auto without = load(scene);
     ASSERT_TRUE(without);

@@ -2,26 +2,31 @@
 // premultiplied light. Coverage-expanding: light spilling over transparent pixels raises their
 // alpha (never lowers it).
 //
-// Passes, for L = levels (sizes are ceil(canvas / 2^k), the host's target sizing):
-//   prefilter        previous -> down1        bright-pass (soft knee on max rgb, capped) and a
-//                                             Karis-weighted 4x4 box: fireflies stay small
-//   down2 .. downL   down(k-1) -> downk       4x4 box (4 bilinear taps)
-//   up(L-1) .. up1   up(k+1) or downL, downk -> upk   9-tap tent of the coarser level + downk
-//   composite        previous, up1 (down1 if L == 1) -> result
-//                    rgb + intensity * up1 / L, alpha a + b (1 - a), b = min(1, max added rgb)
+// Passes, for the chain's levels F = first_level .. L = levels (sizes are ceil(canvas / 2^k), the
+// host's target sizing):
+//   prefilter        previous -> downF        bright-pass (soft knee on max rgb, capped) and a
+//                                             Karis-weighted box (4x4 taps at F = 1 and 2, 8x8
+//                                             at F = 3): fireflies stay small
+//   down(F+1)..downL down(k-1) -> downk       4x4 box (4 bilinear taps)
+//   up(L-1) .. upF   up(k+1) or downL, downk -> upk   9-tap tent of the coarser level + downk
+//                                             (one bilinear tap at upF when fine_tent is off)
+//   composite        previous, upF (downF if L == F) -> result
+//                    rgb + intensity * upF / (L - F + 1), alpha a + b (1 - a),
+//                    b = min(1, max added rgb)
 // The shaders say why each step is built the way it is.
 //
-// Presets trade speed for error against the widest (8-level) glow: fewer levels drop the widest
-// part of the halo. Pixels shaded per frame at 1920x1080 (canvas 2,073,600 px): the composite
-// writes every pixel, down passes shade levels 1..L, up passes levels 1..L-1:
-//   low    (3 levels):  6 passes, 3,402,000 px (1.641 x canvas)
-//   medium (4 levels):  8 passes, 3,442,560 px (1.660 x)
-//   high   (5 levels): 10 passes, 3,452,760 px (1.665 x)
-//   ultra  (6 levels): 12 passes, 3,455,310 px (1.666 x)
-// Taps per pixel: composite 2, prefilter and down 4, up 10. The full-size composite and the two
-// half-size level-1 passes are 90% of those pixels at every preset; levels past 3 add under 2%
-// in pixels, so the presets differ mostly in passes (a draw and a barrier each) and in how wide
-// the halo reaches, not in shading cost.
+// Presets trade speed for error against ultra; all four reach level 6 (the same halo width) and
+// differ in how fine the glow's core is, which is where the cost is. Pixels shaded per frame at
+// 1920x1080 (canvas 2,073,600 px; the composite writes every pixel, down passes shade levels
+// F..L, up passes F..L-1):
+//   low    (levels 3..6):              8 passes, 2,159,310 px (1.041 x canvas)
+//   medium (levels 2..6):             10 passes, 2,418,510 px (1.166 x)
+//   high   (levels 1..6, one-tap up1): 12 passes, 3,455,310 px (1.666 x), up1 1 tap instead of 9
+//   ultra  (levels 1..6):             12 passes, 3,455,310 px (1.666 x)
+// The full-size composite costs the same at every preset; the half-size prefilter and up1 are
+// most of the rest, hence the ladder: drop up1's tent (high), then the half-size level
+// (medium), then the quarter-size one (low). docs/performance.md measures each step's saving and
+// error.
 
 #include <acetate/effect.hpp>
 #include <algorithm>
@@ -42,6 +47,15 @@ inline constexpr FloatParam kIntensity{
 // A quality knob the presets set, yet public: scenes and tests set it too (bloom_test.cpp).
 inline constexpr IntParam kLevels{
     "levels", "depth of the mip chain: each level doubles the glow's reach", 5, 1, 8};
+// The chain's finest level: 1 = half, 2 = quarter, 3 = eighth size. Starting at 2 skips the two
+// half-size passes (the prefilter's and the finest upsample's), most of bloom's cost, and loses
+// the glow's tightest ring. Quality knobs the presets set, like levels and fine_tent.
+inline constexpr IntParam kFirstLevel{
+    "first_level",
+    "finest level of the mip chain: 1 = half, 2 = quarter, 3 = eighth size (cheaper, softer core)",
+    1, 1, 3};
+inline constexpr BoolParam kFineTent{
+    "fine_tent", "the finest upsample uses the 9-tap tent (off: one bilinear tap, cheaper)", true};
 inline constexpr FloatParam kRadius{
     "radius", "upsample tent radius, in texels of the coarser level", 1.0f, 0.5f, 2.0f};
 
@@ -60,44 +74,54 @@ class Bloom final : public Effect {
         e.display_name = "Bloom";
         e.scope = ACETATE_SCOPE_GLOBAL;
         e.coverage = ACETATE_COVERAGE_EXPANDING;
-        e.params = {kThreshold, kKnee, kIntensity, kLevels, kRadius};
-        e.presets = quality_presets({{kLevels, {3, 4, 5, 6}}});
+        e.params = {kThreshold, kKnee, kIntensity, kLevels, kRadius, kFirstLevel, kFineTent};
+        e.presets = quality_presets({{kFirstLevel, {3, 2, 1, 1}},
+                                     {kLevels, {6, 6, 6, 6}},
+                                     {kFineTent, {true, true, false, true}}});
         return e;
     }
 
     void build(Graph& graph, const Floor& floor) const override {
         // The host hands an INT parameter over already rounded and clamped to its declared
-        // range, [1, 8]; clamping again here is only a guard.
-        const int levels = std::clamp(floor[kLevels], 1, 8);
-        for (int k = 1; k <= levels; ++k) graph.target(down(k), 1u << k);
-        for (int k = 1; k < levels; ++k) graph.target(up(k), 1u << k);
+        // range; clamping again here is only a guard. The chain runs from level `first` to
+        // level `last` (at least one level).
+        const int first = std::clamp(floor[kFirstLevel], 1, 3);
+        const int last = std::clamp(floor[kLevels], first, 8);
+        for (int k = first; k <= last; ++k) graph.target(down(k), 1u << k);
+        for (int k = first; k < last; ++k) graph.target(up(k), 1u << k);
 
         // Each shader serves every level: input_names give its inputs the names it reads.
         graph.pass({.name = "prefilter",
                     .glsl = bloom_prefilter_frag,
                     .inputs = {"previous"},
-                    .output = down(1),
+                    .output = down(first),
+                    .defines = "#define DIVISOR " + std::to_string(1 << first) +
+                               ".0\n#define TAPS " + std::to_string(std::max(2, (1 << first) / 2)) +
+                               "\n",
                     .input_names = {"src"}});
-        for (int k = 2; k <= levels; ++k)
+        for (int k = first + 1; k <= last; ++k)
             graph.pass({.name = down(k),
                         .glsl = bloom_down_frag,
                         .inputs = {down(k - 1)},
                         .output = down(k),
                         .input_names = {"src"}});
         // A pass cannot read and write one target, so each level gets its own upK.
-        for (int k = levels - 1; k >= 1; --k) {
-            const std::string coarser = k + 1 == levels ? down(levels) : up(k + 1);
+        for (int k = last - 1; k >= first; --k) {
+            const std::string coarser = k + 1 == last ? down(last) : up(k + 1);
+            const bool one_tap = k == first && !floor[kFineTent];
             graph.pass({.name = up(k),
                         .glsl = bloom_up_frag,
                         .inputs = {coarser, down(k)},
                         .output = up(k),
+                        .defines = one_tap ? "#define ONE_TAP\n" : "",
                         .input_names = {"coarser", "level"}});
         }
         graph.pass({.name = "composite",
                     .glsl = bloom_composite_frag,
-                    .inputs = {"previous", levels == 1 ? down(1) : up(1)},
+                    .inputs = {"previous", last == first ? down(first) : up(first)},
                     .output = "result",
-                    .defines = "#define LEVELS " + std::to_string(levels) + ".0\n",
+                    .defines = "#define LEVELS " + std::to_string(last - first + 1) +
+                               ".0\n#define SCALE " + std::to_string(1 << first) + ".0\n",
                     .input_names = {"", "bloom"}});  // "": previous keeps its name
     }
 };

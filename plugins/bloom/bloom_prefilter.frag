@@ -1,12 +1,15 @@
-// acetate.bloom "prefilter": bright-pass + the first, firefly-safe 2x downsample.
-// Reads src (previous, the composite), writes down1 (ceil(canvas / 2)).
+// acetate.bloom "prefilter": bright-pass + the first, firefly-safe downsample by DIVISOR (2, 4 or
+// 8, from the pass's defines: the chain's first level is half, quarter or eighth size).
+// Reads src (previous, the composite), writes the first down level (ceil(canvas / DIVISOR)).
 //
-// Grid: output texel i covers input texels 2i and 2i+1 (anchored at the top-left, the way the
-// host sizes targets: ceil(size / 2)). Positions are in input texels, so uv = pos / input size
+// Grid: output texel i covers input texels DIVISOR i .. DIVISOR (i+1) - 1 (anchored at the
+// top-left, the way the host sizes targets: ceil(size / DIVISOR)). Positions are in input texels, so uv = pos / input size
 // (textureSize), not gl_FragCoord * acetate_output.zw: on an odd input, 2 * ceil(w / 2) != w and
 // normalising by the output size would stretch the grid, so the bloom would drift by up to half
 // a texel per level. The four taps sit on texel corners (bilinear weights exactly 0.5): each is
-// the mean of one 2x2 block, together a 4x4 box. A tap past the edge is clamped to the edge
+// the mean of one 2x2 block: together a 4x4 box centred on the 2x2 block at DIVISOR 2 (blocks
+// overlap, as in the down passes), exactly the block at DIVISOR 4 and 8 (4 and 16 taps, each
+// input texel read once). A tap past the edge is clamped to the edge
 // texel by the sampler, which is the same as clamping it to the last valid texel centre: the
 // partial last texel of an odd-sized level averages only the valid column/row, replicated.
 
@@ -30,16 +33,23 @@ vec3 bright(vec3 c) {
 
 vec3 tap(vec2 pos, vec2 inv) { return bright(texture(src, pos * inv).rgb); }
 
+// TAPS (the pass's defines) per axis: 2 at DIVISOR 2 and 4 (offsets -1, +1), 4 at DIVISOR 8
+// (-3, -1, +1, +3).
+const int N = TAPS;
+
 void main() {
     vec2 inv = 1.0 / vec2(textureSize(src, 0));
-    vec2 c = 2.0 * gl_FragCoord.xy;  // centre of this texel's 2x2 input block
-    vec3 a = tap(c + vec2(-1.0, -1.0), inv);
-    vec3 b = tap(c + vec2(1.0, -1.0), inv);
-    vec3 d = tap(c + vec2(-1.0, 1.0), inv);
-    vec3 e = tap(c + vec2(1.0, 1.0), inv);
+    vec2 c = DIVISOR * gl_FragCoord.xy;  // centre of this texel's input block
     // Karis average: a tap holding a single very bright pixel weighs ~1/luma, so a firefly adds
     // at most ~1/3 of a unit to its neighbourhood instead of exploding into a disc.
-    float wa = 1.0 / (1.0 + luma(a)), wb = 1.0 / (1.0 + luma(b));
-    float wd = 1.0 / (1.0 + luma(d)), we = 1.0 / (1.0 + luma(e));
-    out_color = vec4((a * wa + b * wb + d * wd + e * we) / (wa + wb + wd + we), 0.0);
+    vec3 sum = vec3(0.0);
+    float weights = 0.0;
+    for (int j = 0; j < N; ++j)
+        for (int i = 0; i < N; ++i) {
+            vec3 t = tap(c + vec2(float(2 * i + 1 - N), float(2 * j + 1 - N)), inv);
+            float w = 1.0 / (1.0 + luma(t));
+            sum += t * w;
+            weights += w;
+        }
+    out_color = vec4(sum / weights, 0.0);
 }
