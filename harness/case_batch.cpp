@@ -44,11 +44,19 @@ std::string shell_word(const std::string& text) {
 }
 
 std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpec>& cases) {
+    std::vector<std::string> folders;
+    for (const CaseSpec& spec : cases) folders.push_back(case_folder(spec.id));
+    return run_case_batch(run, cases, folders);
+}
+
+std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpec>& cases,
+                                       const std::vector<std::string>& folders) {
     const CaseBatch& o = run;
     std::vector<ChildJob> jobs;
     std::vector<fs::path> directories;
-    for (const CaseSpec& spec : cases) {
-        const fs::path dir = o.report_directory / "cases" / case_folder(spec.id);
+    for (size_t c = 0; c < cases.size(); ++c) {
+        const CaseSpec& spec = cases[c];
+        const fs::path dir = o.report_directory / "cases" / folders.at(c);
         std::error_code ec;
         fs::remove_all(dir, ec);
         fs::create_directories(dir, ec);

@@ -29,6 +29,9 @@ struct CaseBatch {
 // Runs `cases` and returns their results in the same order; prints a progress line as each
 // finishes (unless quiet).
 std::vector<CaseResult> run_case_batch(CaseBatch& batch, const std::vector<CaseSpec>& cases);
+// The same, case i in the folder cases/<folders[i]> (a repeated case needs one per run).
+std::vector<CaseResult> run_case_batch(CaseBatch& batch, const std::vector<CaseSpec>& cases,
+                                       const std::vector<std::string>& folders);
 
 // A case's folder name under cases/: its id with every character but letters, digits and '-'
 // turned into '_'.

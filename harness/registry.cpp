@@ -34,7 +34,7 @@ using nlohmann::ordered_json;
 constexpr std::array<const char*, 5> kStageNames = {"UNVALIDATED", "REVIEWED", "ALPHA_TESTED",
                                                     "INTEGRATED", "VALIDATED"};
 // Verdicts that make a run fail; evidence records passing runs only.
-constexpr std::array<const char*, 3> kFailingVerdicts = {"FAIL", "CRASH", "TIMEOUT"};
+constexpr std::array<const char*, 4> kFailingVerdicts = {"FAIL", "FLAKY", "CRASH", "TIMEOUT"};
 
 // ---- small checks and formatting ---------------------------------------------------------
 

@@ -31,6 +31,8 @@ const char* to_string(Verdict verdict) {
             return "WARN";
         case Verdict::Fail:
             return "FAIL";
+        case Verdict::Flaky:
+            return "FLAKY";
         case Verdict::Timeout:
             return "TIMEOUT";
         case Verdict::Crash:
@@ -55,7 +57,7 @@ bool is_process_failure(Verdict verdict) {
 }
 
 bool is_failing(Verdict verdict) {
-    return verdict == Verdict::Fail || is_process_failure(verdict);
+    return verdict == Verdict::Fail || verdict == Verdict::Flaky || is_process_failure(verdict);
 }
 
 // ---- summaries ------------------------------------------------------------------------------

@@ -20,17 +20,20 @@
 
 namespace acetate::harness {
 
-// Ordered by severity: a check's overall verdict is the maximum over its cases.
-enum class Verdict { Pass = 0, Skip = 1, Warn = 2, Fail = 3, Timeout = 4, Crash = 5 };
-const char* to_string(Verdict verdict);  // "PASS", "SKIP", "WARN", "FAIL", "TIMEOUT", "CRASH"
+// Ordered by severity: a check's overall verdict is the maximum over its cases. FLAKY is a
+// case run several times (--repeat) whose verdict changed from one run to another.
+enum class Verdict { Pass = 0, Skip = 1, Warn = 2, Fail = 3, Flaky = 4, Timeout = 5, Crash = 6 };
+// "PASS", "SKIP", "WARN", "FAIL", "FLAKY", "TIMEOUT", "CRASH"
+const char* to_string(Verdict verdict);
 std::optional<Verdict> parse_verdict(std::string_view name);
-// FAIL, TIMEOUT and CRASH fail a run (non-zero exit, no evidence recorded).
+// FAIL, FLAKY, TIMEOUT and CRASH fail a run (non-zero exit, no evidence recorded).
 bool is_failing(Verdict verdict);
 // CRASH and TIMEOUT: the child process, not a check, failed.
 bool is_process_failure(Verdict verdict);
 // Every verdict, by severity.
-inline constexpr std::array<Verdict, 6> kVerdicts = {
-    Verdict::Pass, Verdict::Skip, Verdict::Warn, Verdict::Fail, Verdict::Timeout, Verdict::Crash};
+inline constexpr std::array<Verdict, 7> kVerdicts = {
+    Verdict::Pass,  Verdict::Skip,    Verdict::Warn, Verdict::Fail,
+    Verdict::Flaky, Verdict::Timeout, Verdict::Crash};
 // The pseudo-check that collects cases whose child process crashed or ran out of time.
 inline constexpr const char* kProcessCheck = "process";
 // How report.json writes the values JSON has no number for.

@@ -50,7 +50,8 @@ table.examples { width: auto; font-size: 13px; }
 .badge { display: inline-block; min-width: 64px; padding: 1px 8px; border-radius: 10px; color: #fff;
          font-size: 12px; font-weight: 600; letter-spacing: .03em; text-align: center; }
 .PASS { background: var(--pass); } .SKIP { background: var(--skip); } .WARN { background: var(--warn); }
-.FAIL { background: var(--fail); } .TIMEOUT { background: var(--timeout); }
+.FAIL { background: var(--fail); } .FLAKY { background: var(--fail); }
+.TIMEOUT { background: var(--timeout); }
 .CRASH { background: var(--crash); }
 .status { font-size: 16px; font-weight: 600; padding: 8px 12px; border-radius: 6px; margin: 12px 0;
           color: #fff; }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "case_batch.hpp"
+#include "case_repeat.hpp"
 #include "case_runner.hpp"
 #include "child_process.hpp"
 #include "contract_checks.hpp"
@@ -19,6 +20,7 @@
 #include "plugins/plugin_loader.hpp"
 #include "registry_location.hpp"
 #include "report.hpp"
+#include "report_junit.hpp"
 
 namespace acetate::harness {
 namespace {
@@ -40,6 +42,8 @@ std::string reproduce_command(const ValidateOptions& o, const std::string& case_
         "--registry {} --report {}",
         shell_word(o.plugin.string()), o.strictness, o.seed, o.timeout_seconds, shell_word(case_id),
         shell_word(o.registry.string()), shell_word(o.report_directory.string() + "-repro"));
+    if (o.repeat > 1) command += fmt::format(" --repeat {}", o.repeat);
+    if (o.shuffle_seed) command += fmt::format(" --shuffle-seed {}", *o.shuffle_seed);
     for (const fs::path& dir : o.plugin_paths)
         command += " --plugin-path " + shell_word(dir.string());
     return command;
@@ -386,6 +390,7 @@ int run_validate(const ValidateOptions& o) {
         report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
         auto written = write_json_report(report, o.report_directory / "report.json");
         if (written && o.json_file) written = write_json_report(report, *o.json_file);
+        if (written && o.junit_file) written = write_junit_report(report, *o.junit_file);
         if (written) written = write_html_report(report, o.report_directory);
         if (!written) {
             std::fprintf(stderr, "acetate-harness: %s\n", written.error().message.c_str());
@@ -437,6 +442,12 @@ int run_validate(const ValidateOptions& o) {
         plugin.scope.c_str(), plugin.coverage.c_str(), o.plugin.string().c_str(),
         o.registry.string().c_str(), to_string(before), o.strictness, (unsigned long long)o.seed,
         o.jobs);
+    if (o.repeat > 1 || o.shuffle_seed)
+        std::printf(
+            "every case %u time%s, each in a fresh process%s\n", o.repeat, o.repeat == 1 ? "" : "s",
+            o.shuffle_seed
+                ? fmt::format(", in random order (--shuffle-seed {})", *o.shuffle_seed).c_str()
+                : "");
 
     auto select = [&](std::vector<CaseSpec> cases) {
         if (!partial) return cases;
@@ -458,8 +469,8 @@ int run_validate(const ValidateOptions& o) {
                          const std::vector<CompanionPlugin>& companions) {
         StageRun stage_run;
         stage_run.stage = to_string(stage);
-        run.total += cases.size();
-        std::vector<CaseResult> results = run_case_batch(run, cases);
+        run.total += cases.size() * std::max(1u, o.repeat);
+        std::vector<CaseResult> results = run_repeated(run, cases, {o.repeat, o.shuffle_seed});
         compare_across_processes(results, o.report_directory);
         stage_run.passed = all_pass(results);
         const ValidationStage now = current_stage(o.registry, plugin);

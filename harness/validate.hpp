@@ -31,11 +31,14 @@ struct ValidateOptions {
     ValidationStage up_to = ValidationStage::Integrated;  // --stage
     int strictness = 5;
     uint64_t seed = 1;
-    std::filesystem::path report_directory;          // --report; default ./harness-report/<stem>
-    std::optional<std::filesystem::path> json_file;  // --json
+    std::filesystem::path report_directory;           // --report; default ./harness-report/<stem>
+    std::optional<std::filesystem::path> json_file;   // --json
+    std::optional<std::filesystem::path> junit_file;  // --junit: JUnit XML for CI
     unsigned jobs = 2;
     double timeout_seconds = 120;
-    std::vector<std::string> only_cases;  // --case: run just these (no evidence is recorded)
+    std::vector<std::string> only_cases;   // --case: run just these (no evidence is recorded)
+    unsigned repeat = 1;                   // --repeat: runs per case, each in a fresh process
+    std::optional<uint64_t> shuffle_seed;  // --shuffle: run every case's runs in random order
     std::filesystem::path registry;
     std::optional<std::filesystem::path> signoffs;    // committed sign-offs to import
     std::vector<std::filesystem::path> plugin_paths;  // where integrated companions are found

@@ -3,14 +3,15 @@
 # Used by setup.sh (the build and the tests) and sanitize.sh (adds clang and its runtimes).
 set -euo pipefail
 # Build: compilers, CMake, the libraries. Tests: GoogleTest, Benchmark, clang-format (the
-# format check), git and debootstrap (scripts/fresh-machine.sh's own tests).
+# format check), git and debootstrap (scripts/fresh-machine.sh's own tests), xmllint (the
+# JUnit schema test).
 packages=(
   cmake g++ make pkg-config git
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-dev glslang-tools
   libopenimageio-dev openimageio-tools libimath-dev
   libboost-dev libboost-filesystem-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libglm-dev libssl-dev
-  libgtest-dev libgmock-dev libbenchmark-dev clang-format debootstrap
+  libgtest-dev libgmock-dev libbenchmark-dev clang-format debootstrap libxml2-utils
   "$@"
 )
 missing=()

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <random>
 #include <thread>
 
 #include "case_runner.hpp"
@@ -244,6 +245,8 @@ int main(int argc, char** argv) {
         ->default_val(1);
     v->add_option("--report", report_flag, "Report folder (default ./harness-report/<plugin>)");
     v->add_option("--json", validate.json_file, "Also write the JSON report here");
+    v->add_option("--junit", validate.junit_file,
+                  "Also write JUnit XML here (one suite per stage, one test per case)");
     v->add_option("--jobs", validate.jobs, "Cases run at once")->check(CLI::Range(1, 256));
     v->add_option("--timeout", validate.timeout_seconds, "Seconds a case may take")
         ->check(CLI::Range(1.0, 3600.0))
@@ -256,6 +259,17 @@ int main(int argc, char** argv) {
                   "Committed sign-offs to import (default: the source tree's, or the "
                   "installation's share/acetate/validation/signoffs.json)");
     v->add_flag("--no-signoffs", no_signoffs, "Import no committed sign-offs");
+    bool shuffle = false;
+    v->add_option("--repeat", validate.repeat,
+                  "Run every case N times, each in a fresh process; a case whose verdict "
+                  "changes is FLAKY")
+        ->check(CLI::Range(1, 1000))
+        ->default_val(1);
+    CLI::Option* shuffle_flag =
+        v->add_flag("--shuffle", shuffle, "Run the cases (and their repeats) in random order");
+    v->add_option("--shuffle-seed", validate.shuffle_seed,
+                  "The random order's seed (implies --shuffle; printed by every shuffled run)")
+        ->excludes(shuffle_flag);
 
     FuzzOptions fuzz;
     std::string fuzz_duration = "10m";
@@ -338,6 +352,7 @@ int main(int argc, char** argv) {
             if (!fs::is_regular_file(validate.plugin, ec))
                 return fail(fmt::format("{}: no such plugin file", validate.plugin.string()));
             validate.plugin = fs::absolute(validate.plugin);
+            if (shuffle) validate.shuffle_seed = std::random_device{}();
             return run_validate(validate);
         }
         if (r->parsed()) return run_review(review_plugin, registry, reviewer, review_notes);
