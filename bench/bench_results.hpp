@@ -9,31 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "scene/image_compare.hpp"
+
 namespace acetate::bench {
-
-// idiff-style thresholds on a pixel's largest channel difference (absolute, linear light).
-struct ErrorThresholds {
-    // One half-float rounding at 1.0 (2^-10): below it, rgba16f cannot tell the images apart.
-    double warn = 1.0 / 1024.0;
-    // Four 8-bit steps at full scale (4/255): a difference a person can see on a display.
-    double fail = 4.0 / 255.0;
-};
-
-struct ErrorStats {
-    uint64_t pixels = 0;
-    // Largest |test - reference| over pixels and channels, in units of the half-float spacing
-    // at the reference value (2^-24 below 2^-14, the subnormals; 2^(e-10) for a value in
-    // [2^e, 2^(e+1))). 0 when identical.
-    double max_roundings = 0;
-    double max_abs = 0;   // largest |test - reference|
-    double mean_abs = 0;  // mean |test - reference| over every channel of every pixel
-    // 10 log10(1 / MSE) with peak 1.0 (display white in linear light), over every channel;
-    // infinite when the images are identical.
-    double psnr_db = 0;
-    double warn_share = 0;  // share of pixels whose largest channel difference > warn
-    double fail_share = 0;  // ... > fail
-    bool finite = true;     // no NaN or infinity in the test image
-};
 
 // GPU time of one recorded step of the frame (a host pass or one effect pass), median over the
 // timed frames.

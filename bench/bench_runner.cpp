@@ -9,9 +9,9 @@
 #include <fstream>
 
 #include "config_measure.hpp"
-#include "image_error.hpp"
 #include "peer_flatten.hpp"
 #include "render/renderer.hpp"
+#include "scene/image_compare.hpp"
 #include "scene_variants.hpp"
 #include "vulkan/vulkan_context.hpp"
 

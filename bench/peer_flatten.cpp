@@ -10,7 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "image_error.hpp"
+#include "scene/image_compare.hpp"
 
 namespace acetate::bench {
 namespace {

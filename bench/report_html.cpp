@@ -11,9 +11,9 @@
 #include <utility>
 
 #include "core/atomic_file.hpp"
-#include "image_error.hpp"
 #include "report.hpp"
 #include "report_text.hpp"
+#include "scene/image_compare.hpp"
 
 namespace acetate::bench {
 namespace fs = std::filesystem;
@@ -55,7 +55,7 @@ std::string threshold_text(double value, double default_value, const char* reaso
                                   : fmt::format("{} (set for this run)", error_text(value));
 }
 
-// The heat maps' scale (image_error.hpp) as a gradient with the thresholds marked on it.
+// The heat maps' scale (scene/image_compare.hpp) as a gradient with the thresholds marked on it.
 std::string heat_legend_svg(const ErrorThresholds& thresholds, int id) {
     const HeatMapScale& scale = heat_map_scale();
     const double x0 = 24, width = 360, lo = std::log10(scale.floor_abs),

@@ -14,6 +14,8 @@ Result<void> run_undefined(const CaseContext& c, Session& s, CaseWriter& w);
 Result<void> run_determinism(const CaseContext& c, Session& s, CaseWriter& w);
 Result<void> run_state_isolation(const CaseContext& c, Session& s, CaseWriter& w);
 Result<void> run_floor_isolation(const CaseContext& c, Session& s, CaseWriter& w);
+// golden_case.cpp
+Result<void> run_golden(const CaseContext& c, Session& s, CaseWriter& w);
 // integration_case.cpp
 Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w);
 

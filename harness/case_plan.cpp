@@ -7,6 +7,7 @@
 
 #include "case_spec.hpp"
 #include "input_model.hpp"
+#include "references.hpp"
 
 namespace acetate::harness {
 namespace {
@@ -250,7 +251,11 @@ std::vector<CaseSpec> plan_cases(const PluginInfo& plugin, int strictness, uint6
                                  const std::vector<CompanionPlugin>& companions) {
     strictness = std::clamp(strictness, 1, 10);
     Planner p(plugin, run_seed);
-    if (alpha_stage) plan_alpha(plugin, strictness, run_seed, p);
+    if (alpha_stage) {
+        plan_alpha(plugin, strictness, run_seed, p);
+        // The reference cases are the same at every strictness and seed (references.hpp).
+        for (CaseSpec& golden : golden_cases(plugin)) p.cases.push_back(std::move(golden));
+    }
     if (integration_stage) {
         CaseSpec s = p.contract("integration/stack",
                                 "four floors with the other integrated plugins, against the "

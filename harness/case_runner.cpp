@@ -44,6 +44,9 @@ Result<CaseResult> run_case(const CaseContext& c) {
         case CaseKind::Undefined:
             ran = run_undefined(c, *session, writer);
             break;
+        case CaseKind::Golden:
+            ran = run_golden(c, *session, writer);
+            break;
     }
     if (!ran) return ran.error();
     // Close Vulkan first: messages at teardown (objects left alive) count too.

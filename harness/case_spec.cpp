@@ -13,7 +13,7 @@ using nlohmann::json;
 
 constexpr const char* kKindNames[] = {"contract",        "determinism",  "state-isolation",
                                       "floor-isolation", "disconnected", "integration",
-                                      "undefined"};
+                                      "undefined",       "golden"};
 constexpr const char* kPatternNames[] = {"standard", "alpha-ramp", "hdr",
                                          "empty",    "opaque",     "subnormal"};
 constexpr const char* kLightNames[] = {"three",       "none",       "one",
@@ -120,7 +120,8 @@ json to_json(const CaseSpec& s) {
             {"prior_loads", s.prior_loads},
             {"sweep", s.sweep},
             {"poison", to_string(s.poison)},
-            {"inputs", s.inputs}};
+            {"inputs", s.inputs},
+            {"reference", s.reference}};
 }
 
 Result<CaseSpec> case_spec_from_json(const json& j, std::string_view name) {
@@ -157,6 +158,7 @@ Result<CaseSpec> case_spec_from_json(const json& j, std::string_view name) {
         s.preset = j.at("preset").get<std::string>();
         s.time = j.at("time").get<float>();
         s.switches = j.at("switches").get<uint32_t>();
+        s.reference = j.value("reference", json());
         for (const json& c : j.at("companions"))
             s.companions.push_back({c.at("id").get<std::string>(), c.at("file").get<std::string>(),
                                     c.at("scope").get<std::string>()});

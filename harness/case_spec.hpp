@@ -47,6 +47,7 @@ enum class CaseKind {
     Disconnected,    // every parameter at min and at max must change something
     Integration,     // with the other integrated plugins, against a CPU-built reference
     Undefined,       // GLSL recompiled with checked min/max/clamp/smoothstep: hidden NaN
+    Golden,          // a fixed scene rendered and compared with the blessed reference image
 };
 const char* to_string(CaseKind kind);
 
@@ -99,6 +100,9 @@ struct CaseSpec {
     Poison poison = Poison::NaN;
     // The input model's dimensions and this case's value of each, for the report.
     std::map<std::string, std::string> inputs;
+    // Golden: the blessed image to compare with and its gates (references.hpp,
+    // ReferenceGates); null when none is blessed for this source (the case only renders).
+    nlohmann::json reference = nullptr;
 };
 nlohmann::json to_json(const CaseSpec& spec);
 Result<CaseSpec> case_spec_from_json(const nlohmann::json& json, std::string_view name);

@@ -23,6 +23,7 @@
 #include "core/strict_json.hpp"
 #include "json_fields.hpp"
 #include "plugins/effect_descriptor.hpp"
+#include "registry_fields.hpp"
 
 namespace acetate {
 namespace {
@@ -30,66 +31,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using nlohmann::ordered_json;
+using namespace registry_fields;
 
 constexpr std::array<const char*, 5> kStageNames = {"UNVALIDATED", "REVIEWED", "ALPHA_TESTED",
                                                     "INTEGRATED", "VALIDATED"};
-// Verdicts that make a run fail; evidence records passing runs only.
-constexpr std::array<const char*, 4> kFailingVerdicts = {"FAIL", "FLAKY", "CRASH", "TIMEOUT"};
-
-// ---- small checks and formatting ---------------------------------------------------------
-
-bool is_hex64(std::string_view s) {
-    return s.size() == 64 && std::all_of(s.begin(), s.end(), [](char c) {
-               return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
-           });
-}
-
-// "MAJOR.MINOR.PATCH", each a decimal uint32 without sign.
-std::optional<std::array<uint32_t, 3>> parse_version(std::string_view s) {
-    std::array<uint32_t, 3> out{};
-    for (size_t i = 0; i < 3; ++i) {
-        const size_t dot = i < 2 ? s.find('.') : s.size();
-        if (dot == std::string_view::npos || dot == 0) return std::nullopt;
-        const std::string_view part = s.substr(0, dot);
-        auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), out[i]);
-        if (ec != std::errc() || end != part.data() + part.size()) return std::nullopt;
-        s.remove_prefix(std::min(s.size(), dot + 1));
-        if (i < 2 && s.empty()) return std::nullopt;
-    }
-    return out;
-}
-
-bool is_timestamp(const std::string& s) {
-    static const std::regex pattern(
-        "\\d{4}-(0[1-9]|1[0-2])-(0[1-9]|[12]\\d|3[01])T([01]\\d|2[0-3]):[0-5]\\d:[0-5]\\dZ");
-    return std::regex_match(s, pattern);
-}
-
-bool is_blank(std::string_view s) {
-    return std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isspace(c); });
-}
-
-std::string short_hash(std::string_view hash) {
-    return std::string(hash.substr(0, 12));
-}
-
-std::string plugin_name(std::string_view id, std::string_view version) {
-    return fmt::format("{} {}", id, version);
-}
-
-Error refused(std::string_view id, std::string_view version, const std::string& what) {
-    return make_error(ErrorCode::InvalidInput,
-                      fmt::format("{}: {}", plugin_name(id, version), what));
-}
-
-Error io_error(const fs::path& file, std::string_view what, int err) {
-    return make_error(ErrorCode::Io,
-                      fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
-}
-
-ValidationStage next(ValidationStage s) {
-    return ValidationStage(int(s) + 1);
-}
 
 // The shapes every operation checks before touching an entry.
 Result<void> check_identity(std::string_view id, std::string_view version,
@@ -113,6 +58,25 @@ Result<void> check_identity(std::string_view id, std::string_view version,
     return {};
 }
 
+// A sign-off's own fields, before it is recorded: who, when, and the source it is for.
+Result<void> check_sign_off(std::string_view id, std::string_view version, const char* what,
+                            const SignOff& s, std::string_view source_digest) {
+    if (is_blank(s.by))
+        return refused(
+            id, version,
+            fmt::format("{} refused: the {}'s name is empty (a sign-off says who "
+                        "signed)",
+                        what, std::string_view(what) == "review" ? "reviewer" : "maintainer"));
+    if (!is_timestamp(s.at))
+        return refused(id, version,
+                       fmt::format("{} refused: time \"{}\" is not ISO-8601 UTC", what, s.at));
+    if (s.source_digest != source_digest)
+        return refused(id, version,
+                       fmt::format("{} refused: it signs source {}, the plugin's is {}", what,
+                                   short_hash(s.source_digest), short_hash(source_digest)));
+    return {};
+}
+
 // Why `e` does not reach the stage after the one it holds for this binary and source.
 std::string first_missing_record(const RegistryEntry* e, std::string_view binary,
                                  std::string_view source) {
@@ -123,6 +87,7 @@ std::string first_missing_record(const RegistryEntry* e, std::string_view binary
         return out;
     };
     auto sign_off_gap = [&](const char* what, const std::optional<SignOff>& s) {
+        if (!s && e->distrusted.count(what)) return e->distrusted.at(what);
         std::string out = fmt::format("no {} sign-off for source {}", what, short_hash(source));
         if (s) out += fmt::format(" (signed for {})", short_hash(s->source_digest));
         return out;
@@ -160,13 +125,9 @@ void rebind(RegistryEntry& e, std::string_view binary, std::string_view source) 
     if (e.promotion && e.promotion->source_digest != source) e.promotion.reset();
     if (e.alpha_tested && e.alpha_tested->binary_sha256 != binary) e.alpha_tested.reset();
     if (e.integrated && e.integrated->binary_sha256 != binary) e.integrated.reset();
+    std::erase_if(e.waivers, [&](const Waiver& w) { return w.source_digest != source; });
     e.binary_sha256 = binary;
     e.source_digest = source;
-}
-
-bool entry_less(const RegistryEntry& a, const RegistryEntry& b) {
-    if (a.id != b.id) return a.id < b.id;
-    return parse_version(a.version) < parse_version(b.version);
 }
 
 // ---- file helpers ---------------------------------------------------------------------------
@@ -191,159 +152,6 @@ class ExclusiveLock {
   private:
     int fd_ = -1;
 };
-
-// ---- JSON reading -------------------------------------------------------------------------
-// Field errors (json_fields.hpp) are caught in Registry::parse.
-using namespace json_fields;
-
-std::string text(const json& j, const std::string& path, std::string_view key) {
-    const json& v = j.at(std::string(key));
-    if (!v.is_string())
-        fail(field(path, key), fmt::format("must be a string, found {}", v.type_name()));
-    return v.get<std::string>();
-}
-
-std::string nonempty(const json& j, const std::string& path, std::string_view key) {
-    std::string s = text(j, path, key);
-    if (is_blank(s)) fail(field(path, key), "must not be empty");
-    return s;
-}
-
-std::string hex64(const json& j, const std::string& path, std::string_view key) {
-    std::string s = text(j, path, key);
-    if (!is_hex64(s))
-        fail(field(path, key), fmt::format("\"{}\" is not 64 lowercase hex digits", s));
-    return s;
-}
-
-std::string timestamp(const json& j, const std::string& path, std::string_view key) {
-    std::string s = text(j, path, key);
-    if (!is_timestamp(s))
-        fail(field(path, key), fmt::format("\"{}\" is not ISO-8601 UTC (YYYY-MM-DDTHH:MM:SSZ)", s));
-    return s;
-}
-
-SignOff read_sign_off(const json& j, const std::string& path) {
-    expect_object(j, path, {"by", "at", "notes", "source_digest"});
-    return SignOff{nonempty(j, path, "by"), timestamp(j, path, "at"), text(j, path, "notes"),
-                   hex64(j, path, "source_digest")};
-}
-
-StageEvidence read_evidence(const json& j, const std::string& path) {
-    expect_object(j, path,
-                  {"at", "harness_version", "summary", "counts", "report", "binary_sha256"});
-    StageEvidence ev{timestamp(j, path, "at"), nonempty(j, path, "harness_version"),
-                     text(j, path, "summary"), {},
-                     text(j, path, "report"),  hex64(j, path, "binary_sha256")};
-    const std::string counts_path = field(path, "counts");
-    const json& counts = j.at("counts");
-    if (!counts.is_object()) fail(counts_path, "must be an object of verdict: count");
-    for (const auto& [verdict, n] : counts.items()) {
-        if (verdict.empty()) fail(counts_path, "a verdict name is empty");
-        if (!n.is_number_unsigned())
-            fail(field(counts_path, verdict), "must be a non-negative integer");
-        ev.counts[verdict] = n.get<uint64_t>();
-    }
-    for (const char* bad : kFailingVerdicts)
-        if (ev.counts.count(bad) && ev.counts.at(bad) > 0)
-            fail(field(counts_path, bad), "evidence records passing runs only");
-    return ev;
-}
-
-RegistryEntry read_entry(const json& j, const std::string& path) {
-    if (!j.is_object()) fail(path, fmt::format("must be an object, found {}", j.type_name()));
-    expect_object(j, path, {"id", "version", "stage", "binary_sha256", "source_digest"},
-                  {"review", "alpha_tested", "integrated", "promotion"});
-
-    RegistryEntry e;
-    e.id = text(j, path, "id");
-    if (!is_reverse_dns(e.id))
-        fail(field(path, "id"), fmt::format("\"{}\" is not reverse-DNS", e.id));
-    e.version = text(j, path, "version");
-    if (!parse_version(e.version))
-        fail(field(path, "version"), fmt::format("\"{}\" is not MAJOR.MINOR.PATCH", e.version));
-    e.binary_sha256 = hex64(j, path, "binary_sha256");
-    e.source_digest = hex64(j, path, "source_digest");
-    if (j.contains("review")) e.review = read_sign_off(j["review"], field(path, "review"));
-    if (j.contains("promotion"))
-        e.promotion = read_sign_off(j["promotion"], field(path, "promotion"));
-    if (j.contains("alpha_tested"))
-        e.alpha_tested = read_evidence(j["alpha_tested"], field(path, "alpha_tested"));
-    if (j.contains("integrated"))
-        e.integrated = read_evidence(j["integrated"], field(path, "integrated"));
-
-    // Every record binds to the entry's binary and source, and none skips a stage: that is
-    // what the operations produce, so anything else was edited by hand.
-    auto bound = [&](const char* key, const std::string& got, const std::string& want,
-                     const char* what) {
-        if (got != want)
-            fail(field(field(path, key), what),
-                 fmt::format("{} is not the entry's {} {}", short_hash(got), what,
-                             short_hash(want)));
-    };
-    if (e.review) bound("review", e.review->source_digest, e.source_digest, "source_digest");
-    if (e.promotion)
-        bound("promotion", e.promotion->source_digest, e.source_digest, "source_digest");
-    if (e.alpha_tested)
-        bound("alpha_tested", e.alpha_tested->binary_sha256, e.binary_sha256, "binary_sha256");
-    if (e.integrated)
-        bound("integrated", e.integrated->binary_sha256, e.binary_sha256, "binary_sha256");
-    if ((e.alpha_tested || e.promotion) && !e.review)
-        fail(path, "has later records but no review (stages are never skipped)");
-    if (e.integrated && !e.alpha_tested)
-        fail(field(path, "integrated"), "present without alpha_tested (stages are never skipped)");
-
-    const std::string stage = text(j, path, "stage");
-    if (stage != to_string(e.stage()))
-        fail(field(path, "stage"),
-             fmt::format("says {} but its records support {}", stage, to_string(e.stage())));
-    return e;
-}
-
-// ---- JSON writing ---------------------------------------------------------------------------
-
-ordered_json write_sign_off(const SignOff& s) {
-    return ordered_json{
-        {"by", s.by}, {"at", s.at}, {"notes", s.notes}, {"source_digest", s.source_digest}};
-}
-
-ordered_json write_evidence(const StageEvidence& ev) {
-    ordered_json counts = ordered_json::object();
-    for (const auto& [verdict, n] : ev.counts) counts[verdict] = n;
-    return ordered_json{{"at", ev.at},           {"harness_version", ev.harness_version},
-                        {"summary", ev.summary}, {"counts", counts},
-                        {"report", ev.report},   {"binary_sha256", ev.binary_sha256}};
-}
-
-// ---- Markdown -------------------------------------------------------------------------------
-
-// One line, safe inside a table cell.
-std::string cell(std::string_view s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '|')
-            out += "\\|";
-        else if (c == '\n' || c == '\r')
-            out += ' ';
-        else
-            out += c;
-    }
-    return out;
-}
-
-std::string who_when(const std::optional<SignOff>& s) {
-    return s ? cell(fmt::format("{}, {}", s->by, s->at)) : "—";
-}
-
-std::string when_harness(const std::optional<StageEvidence>& ev) {
-    return ev ? cell(fmt::format("{} (harness {})", ev->at, ev->harness_version)) : "—";
-}
-
-std::string counts_text(const StageEvidence& ev) {
-    std::vector<std::string> parts;
-    for (const auto& [verdict, n] : ev.counts) parts.push_back(fmt::format("{} {}", n, verdict));
-    return parts.empty() ? "no counts" : fmt::format("{}", fmt::join(parts, ", "));
-}
 
 }  // namespace
 
@@ -392,15 +200,19 @@ RegistryEntry& Registry::entry_for(std::string_view id, std::string_view version
 Result<void> Registry::record_review(std::string_view id, std::string_view version,
                                      std::string_view binary_sha256, std::string_view source_digest,
                                      std::string_view reviewer, std::string_view notes) {
+    return record_review(id, version, binary_sha256, source_digest,
+                         SignOff{std::string(reviewer), clock_(), std::string(notes),
+                                 std::string(source_digest), ""});
+}
+
+Result<void> Registry::record_review(std::string_view id, std::string_view version,
+                                     std::string_view binary_sha256, std::string_view source_digest,
+                                     SignOff review) {
     ACETATE_TRY(check_identity(id, version, binary_sha256, source_digest));
-    if (is_blank(reviewer))
-        return refused(id, version,
-                       "review refused: the reviewer's name is empty (a sign-off says who "
-                       "signed)");
+    ACETATE_TRY(check_sign_off(id, version, "review", review, source_digest));
     RegistryEntry& e = entry_for(id, version);
     rebind(e, binary_sha256, source_digest);
-    e.review =
-        SignOff{std::string(reviewer), clock_(), std::string(notes), std::string(source_digest)};
+    e.review = std::move(review);
     return {};
 }
 
@@ -448,25 +260,86 @@ Result<void> Registry::record_evidence(std::string_view id, std::string_view ver
 
 Result<void> Registry::promote(std::string_view id, std::string_view version, std::string_view by,
                                std::string_view notes) {
-    if (is_blank(by))
-        return refused(id, version,
-                       "promotion refused: the maintainer's name is empty (a sign-off says "
-                       "who signed)");
+    const RegistryEntry* existing = find(id, version);
+    if (existing && existing->stage() == ValidationStage::Validated)
+        return refused(id, version, "promotion refused: it is already VALIDATED");
+    return promote(id, version,
+                   SignOff{std::string(by), clock_(), std::string(notes),
+                           existing ? existing->source_digest : "", ""});
+}
+
+Result<void> Registry::promote(std::string_view id, std::string_view version, SignOff promotion) {
     const RegistryEntry* existing = find(id, version);
     if (!existing)
         return refused(id, version, "promotion refused: the registry has no record of it");
+    ACETATE_TRY(check_sign_off(id, version, "promotion", promotion, existing->source_digest));
+    // A promotion already there is replaced: the caller has found it untrusted (its signature
+    // does not hold) and signs a new one.
     const ValidationStage held = existing->stage();
-    if (held == ValidationStage::Validated)
-        return refused(id, version, "promotion refused: it is already VALIDATED");
-    if (held != ValidationStage::Integrated)
+    if (held != ValidationStage::Integrated && held != ValidationStage::Validated)
         return refused(id, version,
                        fmt::format("promotion refused: only an INTEGRATED plugin is promoted; it "
                                    "is {} ({})",
                                    to_string(held),
                                    first_missing_record(existing, existing->binary_sha256,
                                                         existing->source_digest)));
+    const std::string today = clock_().substr(0, 10);
+    for (const Waiver& w : existing->waivers)
+        if (w.expired(today))
+            return refused(id, version,
+                           fmt::format("promotion refused: the waiver of \"{}\" expired on {} "
+                                       "(by {}: {}); renew it or fix the plugin",
+                                       w.check, w.until, w.by, w.reason));
+    const bool strictness_waived =
+        std::any_of(existing->waivers.begin(), existing->waivers.end(),
+                    [](const Waiver& w) { return w.check == kStrictnessWaiver; });
+    for (const auto* ev : {&existing->alpha_tested, &existing->integrated})
+        if (*ev && (*ev)->strictness > 0 && (*ev)->strictness < kDefaultStrictness &&
+            !strictness_waived)
+            return refused(id, version,
+                           fmt::format("promotion refused: its evidence was taken at strictness "
+                                       "{}, below the default {}; validate again at {} or more, "
+                                       "or waive \"{}\" saying why",
+                                       (*ev)->strictness, kDefaultStrictness, kDefaultStrictness,
+                                       kStrictnessWaiver));
     RegistryEntry& e = entry_for(id, version);
-    e.promotion = SignOff{std::string(by), clock_(), std::string(notes), e.source_digest};
+    e.promotion = std::move(promotion);
+    return {};
+}
+
+Result<void> Registry::waive(std::string_view id, std::string_view version,
+                             std::string_view binary_sha256, std::string_view source_digest,
+                             Waiver waiver) {
+    ACETATE_TRY(check_identity(id, version, binary_sha256, source_digest));
+    if (is_blank(waiver.check)) return refused(id, version, "waiver refused: no check named");
+    if (is_blank(waiver.reason))
+        return refused(id, version, "waiver refused: the reason is empty (a waiver says why)");
+    if (is_blank(waiver.by))
+        return refused(id, version, "waiver refused: the maintainer's name is empty");
+    const std::string now = clock_();
+    if (!is_day(waiver.until))
+        return refused(id, version,
+                       fmt::format("waiver refused: --until \"{}\" is not a day "
+                                   "(YYYY-MM-DD)",
+                                   waiver.until));
+    if (waiver.expired(now.substr(0, 10)))
+        return refused(id, version,
+                       fmt::format("waiver refused: --until {} is already past", waiver.until));
+    const RegistryEntry* existing = find(id, version);
+    const ValidationStage held =
+        existing ? existing->stage_for(binary_sha256, source_digest) : ValidationStage::Unvalidated;
+    if (held == ValidationStage::Unvalidated)
+        return refused(id, version,
+                       fmt::format("waiver refused: it is UNVALIDATED for this source ({}); a "
+                                   "waiver is granted on reviewed code",
+                                   first_missing_record(existing, binary_sha256, source_digest)));
+    RegistryEntry& e = entry_for(id, version);
+    waiver.at = now;
+    waiver.source_digest = source_digest;
+    std::erase_if(e.waivers, [&](const Waiver& w) { return w.check == waiver.check; });
+    e.waivers.push_back(std::move(waiver));
+    std::sort(e.waivers.begin(), e.waivers.end(),
+              [](const Waiver& a, const Waiver& b) { return a.check < b.check; });
     return {};
 }
 
@@ -520,59 +393,11 @@ std::string Registry::explain(std::string_view id, std::string_view binary_sha25
                        id, fmt::join(others, ", "));
 }
 
-// ---- the file -------------------------------------------------------------------------------
-
-Result<Registry> Registry::parse(std::string_view json_text, std::string_view name) {
-    // Strict: a key written twice (a second binary_sha256 in an entry, say) is refused, so
-    // what a reviewer reads in the file is what the host uses.
-    auto parsed = parse_json_strict(json_text, name);
-    if (!parsed) return parsed.error();
-    const json& doc = parsed.value();
-    Registry registry;
-    try {
-        expect_object(doc, "", {"format", "plugins"});
-        if (const std::string format = text(doc, "", "format"); format != kFormat)
-            fail("format", fmt::format("\"{}\" is not \"{}\"", format, kFormat));
-        const json& plugins = doc["plugins"];
-        if (!plugins.is_array()) fail("plugins", "must be an array");
-        for (size_t i = 0; i < plugins.size(); ++i) {
-            const std::string path = fmt::format("plugins[{}]", i);
-            RegistryEntry e = read_entry(plugins[i], path);
-            if (registry.find(e.id, e.version))
-                fail(path, fmt::format("{} appears twice", plugin_name(e.id, e.version)));
-            registry.entries_.push_back(std::move(e));
-        }
-    } catch (const JsonFieldError& e) {
-        const std::string where = e.path.empty() ? "" : e.path + ": ";
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}{}", name, where, e.what));
-    }
-    std::sort(registry.entries_.begin(), registry.entries_.end(), entry_less);
-    return registry;
-}
-
 Result<Registry> Registry::load(const fs::path& file) {
     auto bytes = read_input_file_if_exists(file, kMaxRegistryFileBytes, "a registry");
     if (!bytes) return bytes.error();
     if (!bytes.value()) return Registry();
     return parse(*bytes.value(), file.string());
-}
-
-std::string Registry::to_json() const {
-    ordered_json plugins = ordered_json::array();
-    for (const RegistryEntry& e : entries_) {
-        ordered_json j = {{"id", e.id},
-                          {"version", e.version},
-                          {"stage", to_string(e.stage())},
-                          {"binary_sha256", e.binary_sha256},
-                          {"source_digest", e.source_digest}};
-        if (e.review) j["review"] = write_sign_off(*e.review);
-        if (e.alpha_tested) j["alpha_tested"] = write_evidence(*e.alpha_tested);
-        if (e.integrated) j["integrated"] = write_evidence(*e.integrated);
-        if (e.promotion) j["promotion"] = write_sign_off(*e.promotion);
-        plugins.push_back(std::move(j));
-    }
-    const ordered_json doc = {{"format", std::string(kFormat)}, {"plugins", plugins}};
-    return doc.dump(2) + "\n";
 }
 
 Result<void> Registry::save(const fs::path& file) const {
@@ -603,60 +428,6 @@ Result<void> Registry::update(const fs::path& file,
     if (!markdown.empty())
         ACETATE_TRY(write_registry_markdown(registry, markdown, file.filename().string()));
     return {};
-}
-
-// ---- VALIDATION-REGISTRY.md -----------------------------------------------------------------
-
-std::string render_registry_markdown(const Registry& registry, std::string_view source_name) {
-    std::string out = fmt::format(
-        "# Validation registry\n\n"
-        "Generated from `{}` by acetate-harness; do not edit by hand. Stages: UNVALIDATED → "
-        "REVIEWED → ALPHA_TESTED → INTEGRATED → VALIDATED, never skipped; what each promises is "
-        "in docs/registry.md. Sign-offs bind to the source digest, evidence to the binary's "
-        "SHA-256 (both shortened to 12 digits here).\n\n",
-        source_name);
-    if (registry.entries().empty()) return out + "No plugins recorded yet.\n";
-
-    out +=
-        "| Plugin | Version | Stage | Binary SHA-256 | Source digest | Reviewed | "
-        "Alpha-tested | Integrated | Promoted |\n"
-        "|---|---|---|---|---|---|---|---|---|\n";
-    for (const RegistryEntry& e : registry.entries())
-        out += fmt::format("| `{}` | {} | **{}** | `{}` | `{}` | {} | {} | {} | {} |\n", e.id,
-                           e.version, to_string(e.stage()), short_hash(e.binary_sha256),
-                           short_hash(e.source_digest), who_when(e.review),
-                           when_harness(e.alpha_tested), when_harness(e.integrated),
-                           who_when(e.promotion));
-
-    for (const RegistryEntry& e : registry.entries()) {
-        out += fmt::format("\n## {} {} — {}\n\n", e.id, e.version, to_string(e.stage()));
-        out += fmt::format("- Binary SHA-256 `{}`, source digest `{}`\n", e.binary_sha256,
-                           e.source_digest);
-        auto sign_off = [&](const char* what, const std::optional<SignOff>& s) {
-            if (s)
-                out += cell(fmt::format("- {} by {} at {}: {}", what, s->by, s->at,
-                                        s->notes.empty() ? "(no notes)" : s->notes)) +
-                       "\n";
-        };
-        auto evidence = [&](const char* what, const std::optional<StageEvidence>& ev) {
-            if (!ev) return;
-            out +=
-                cell(fmt::format("- {} at {}, harness {}: {}{}", what, ev->at, ev->harness_version,
-                                 ev->summary.empty() ? "" : ev->summary + "; ", counts_text(*ev)));
-            if (!ev->report.empty()) out += cell(fmt::format("; report `{}`", ev->report));
-            out += "\n";
-        };
-        sign_off("Reviewed", e.review);
-        evidence("Alpha-tested", e.alpha_tested);
-        evidence("Integrated", e.integrated);
-        sign_off("Promoted to VALIDATED", e.promotion);
-    }
-    return out;
-}
-
-Result<void> write_registry_markdown(const Registry& registry, const fs::path& file,
-                                     std::string_view source_name) {
-    return write_file_atomically(file, render_registry_markdown(registry, source_name));
 }
 
 Result<std::string> file_sha256(const fs::path& file) {

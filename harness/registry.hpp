@@ -47,8 +47,30 @@ struct SignOff {
     std::string at;             // when, ISO-8601 UTC: 2025-11-22T08:51:00Z
     std::string notes;          // free text, may be empty
     std::string source_digest;  // the source it vouches for
+    // The maintainer's SSH signature of sign_off_statement() (armored, as `ssh-keygen -Y sign`
+    // writes it); empty when unsigned. Only a signature that verifies against the allowed
+    // signers makes the sign-off count (Registry::verify_sign_offs).
+    std::string signature;
     bool operator==(const SignOff&) const = default;
 };
+
+// A maintainer's acceptance of one check failing for one plugin source, for a stated reason and
+// until a stated day (docs/registry.md, "Waivers"). A waived check reads WAIVED, never PASS; an
+// expired waiver fails validation and blocks promotion.
+struct Waiver {
+    std::string check;          // a harness check, or "strictness" (evidence below the default)
+    std::string reason;         // why; never empty
+    std::string by, at;         // who; when, ISO-8601 UTC
+    std::string until;          // the last day it holds, YYYY-MM-DD (UTC)
+    std::string source_digest;  // the source it was granted for
+    // Whether `today` (YYYY-MM-DD) is past the last day.
+    bool expired(std::string_view today) const { return today > std::string_view(until); }
+    bool operator==(const Waiver&) const = default;
+};
+// The harness's default strictness: evidence taken below it is promoted only under a waiver of
+// the check "strictness" (kStrictnessWaiver).
+inline constexpr int kDefaultStrictness = 5;
+inline constexpr const char* kStrictnessWaiver = "strictness";
 
 // The evidence of one passing automated stage run (ALPHA_TESTED or INTEGRATED).
 struct StageEvidence {
@@ -58,6 +80,7 @@ struct StageEvidence {
     std::map<std::string, uint64_t> counts;  // verdict -> cases: PASS, WARN, SKIP, ...
     std::string report;                      // where the run's report is; may be empty
     std::string binary_sha256;               // what it ran on; set by record_evidence
+    int strictness = 0;  // the run's --strictness; 0: not recorded (an older harness)
     bool operator==(const StageEvidence&) const = default;
 };
 
@@ -68,6 +91,10 @@ struct RegistryEntry {
     std::string binary_sha256, source_digest;
     std::optional<SignOff> review, promotion;
     std::optional<StageEvidence> alpha_tested, integrated;
+    std::vector<Waiver> waivers;  // for source_digest, one per check, sorted by check
+    // Filled by Registry::verify_sign_offs, never stored: for "review" and "promotion", why
+    // that sign-off was dropped (its signature is missing, wrong, or made by a key not allowed).
+    std::map<std::string, std::string> distrusted;
 
     // The highest stage whose records (and all earlier ones) bind to this binary and source.
     ValidationStage stage_for(std::string_view binary_sha256, std::string_view source_digest) const;
@@ -75,6 +102,14 @@ struct RegistryEntry {
     ValidationStage stage() const { return stage_for(binary_sha256, source_digest); }
     bool operator==(const RegistryEntry&) const = default;
 };
+
+// What a maintainer's signature covers, the bytes `ssh-keygen -Y sign` signs: one line of JSON
+// with the format ("acetate-signoff/1"), the plugin id and version, the stage the sign-off
+// grants (REVIEWED or VALIDATED), and the sign-off's source digest, maintainer, time and notes.
+std::string sign_off_statement(std::string_view id, std::string_view version, ValidationStage stage,
+                               const SignOff& sign_off);
+
+class SignatureVerifier;
 
 class Registry {
   public:
@@ -118,6 +153,11 @@ class Registry {
     Result<void> record_review(std::string_view id, std::string_view version,
                                std::string_view binary_sha256, std::string_view source_digest,
                                std::string_view reviewer, std::string_view notes);
+    // The same with a complete sign-off, as `acetate-harness review` signs it: its time and
+    // signature are kept; refused when its source digest is not `source_digest`.
+    Result<void> record_review(std::string_view id, std::string_view version,
+                               std::string_view binary_sha256, std::string_view source_digest,
+                               SignOff review);
     // Records a passing run of `stage` (AlphaTested or Integrated) on `binary_sha256`. Refused
     // unless the plugin holds the stage before it for this binary and source (the message
     // names the missing stage), or when `evidence` counts any FAIL, CRASH or TIMEOUT.
@@ -125,10 +165,30 @@ class Registry {
     Result<void> record_evidence(std::string_view id, std::string_view version,
                                  std::string_view binary_sha256, std::string_view source_digest,
                                  ValidationStage stage, StageEvidence evidence);
+    // Records a waiver for the plugin's source (replacing one of the same check). Refused
+    // unless the plugin is at least REVIEWED for this binary and source, or when the check,
+    // the reason or the name is empty, or `until` is not a YYYY-MM-DD day from today on.
+    Result<void> waive(std::string_view id, std::string_view version,
+                       std::string_view binary_sha256, std::string_view source_digest,
+                       Waiver waiver);
     // INTEGRATED -> VALIDATED for the entry's recorded binary and source; refused from any
-    // other stage, or when `by` is empty.
+    // other stage, or when `by` is empty, or while a waiver has expired, or when evidence was
+    // taken below kDefaultStrictness and no waiver of "strictness" says why.
     Result<void> promote(std::string_view id, std::string_view version, std::string_view by,
                          std::string_view notes);
+    // The same with a complete sign-off, as `acetate-harness promote` signs it; a promotion
+    // already recorded is replaced (whoever calls this found it untrusted).
+    Result<void> promote(std::string_view id, std::string_view version, SignOff promotion);
+
+    // Checks the signature of every sign-off in the entries `which` selects (every entry when
+    // empty) against `verifier`. A sign-off whose signature is missing, does not match its
+    // statement, or was made by a key the allowed signers do not list for its maintainer (or a
+    // revoked key) is dropped from this copy, and the entry's `distrusted` says why; its stage
+    // falls accordingly, and explain() and require_validated() give that reason. Whoever trusts
+    // a stage (the host, validate, status, promote) loads the registry, then calls this: writing
+    // the file is not enough to validate a plugin. Runs ssh-keygen once per sign-off.
+    void verify_sign_offs(const SignatureVerifier& verifier,
+                          const std::function<bool(const RegistryEntry&)>& which = {});
 
     // The stage this exact binary and source hold (UNVALIDATED when the plugin is unknown).
     ValidationStage effective_stage(std::string_view id, std::string_view version,

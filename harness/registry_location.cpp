@@ -54,6 +54,24 @@ std::optional<fs::path> default_signoffs_path() {
     return fs::is_regular_file(file, ec) ? std::optional(file) : std::nullopt;
 }
 
+fs::path allowed_signers_path(const std::optional<fs::path>& flag) {
+    if (flag && !flag->empty()) return *flag;
+    if (const char* env = std::getenv("ACETATE_ALLOWED_SIGNERS"); env && *env) return env;
+    return fs::path(running_from_build_tree()
+                        ? ACETATE_SOURCE_VALIDATION
+                        : install_prefix() / ACETATE_INSTALL_DATADIR / "acetate/validation") /
+           "allowed_signers";
+}
+
+fs::path references_path(const std::optional<fs::path>& flag) {
+    if (flag && !flag->empty()) return *flag;
+    if (const char* env = std::getenv("ACETATE_REFERENCES"); env && *env) return env;
+    return fs::path(running_from_build_tree()
+                        ? ACETATE_SOURCE_VALIDATION
+                        : install_prefix() / ACETATE_INSTALL_DATADIR / "acetate/validation") /
+           "references";
+}
+
 fs::path registry_path(const std::optional<fs::path>& flag) {
     if (flag && !flag->empty()) return *flag;
     if (const char* env = std::getenv("ACETATE_REGISTRY"); env && *env) return env;

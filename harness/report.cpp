@@ -29,6 +29,8 @@ const char* to_string(Verdict verdict) {
             return "SKIP";
         case Verdict::Warn:
             return "WARN";
+        case Verdict::Waived:
+            return "WAIVED";
         case Verdict::Fail:
             return "FAIL";
         case Verdict::Flaky:

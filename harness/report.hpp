@@ -20,10 +20,20 @@
 
 namespace acetate::harness {
 
-// Ordered by severity: a check's overall verdict is the maximum over its cases. FLAKY is a
-// case run several times (--repeat) whose verdict changed from one run to another.
-enum class Verdict { Pass = 0, Skip = 1, Warn = 2, Fail = 3, Flaky = 4, Timeout = 5, Crash = 6 };
-// "PASS", "SKIP", "WARN", "FAIL", "FLAKY", "TIMEOUT", "CRASH"
+// Ordered by severity: a check's overall verdict is the maximum over its cases. WAIVED is a
+// FAIL a maintainer's waiver accepts (never read as PASS); FLAKY is a case run several times
+// (--repeat) whose verdict changed from one run to another.
+enum class Verdict {
+    Pass = 0,
+    Skip = 1,
+    Warn = 2,
+    Waived = 3,
+    Fail = 4,
+    Flaky = 5,
+    Timeout = 6,
+    Crash = 7
+};
+// "PASS", "SKIP", "WARN", "WAIVED", "FAIL", "FLAKY", "TIMEOUT", "CRASH"
 const char* to_string(Verdict verdict);
 std::optional<Verdict> parse_verdict(std::string_view name);
 // FAIL, FLAKY, TIMEOUT and CRASH fail a run (non-zero exit, no evidence recorded).
@@ -31,9 +41,9 @@ bool is_failing(Verdict verdict);
 // CRASH and TIMEOUT: the child process, not a check, failed.
 bool is_process_failure(Verdict verdict);
 // Every verdict, by severity.
-inline constexpr std::array<Verdict, 7> kVerdicts = {
-    Verdict::Pass,  Verdict::Skip,    Verdict::Warn, Verdict::Fail,
-    Verdict::Flaky, Verdict::Timeout, Verdict::Crash};
+inline constexpr std::array<Verdict, 8> kVerdicts = {
+    Verdict::Pass, Verdict::Skip,  Verdict::Warn,    Verdict::Waived,
+    Verdict::Fail, Verdict::Flaky, Verdict::Timeout, Verdict::Crash};
 // The pseudo-check that collects cases whose child process crashed or ran out of time.
 inline constexpr const char* kProcessCheck = "process";
 // How report.json writes the values JSON has no number for.

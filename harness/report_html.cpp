@@ -51,6 +51,7 @@ table.examples { width: auto; font-size: 13px; }
          font-size: 12px; font-weight: 600; letter-spacing: .03em; text-align: center; }
 .PASS { background: var(--pass); } .SKIP { background: var(--skip); } .WARN { background: var(--warn); }
 .FAIL { background: var(--fail); } .FLAKY { background: var(--fail); }
+.WAIVED { background: var(--warn); }
 .TIMEOUT { background: var(--timeout); }
 .CRASH { background: var(--crash); }
 .status { font-size: 16px; font-weight: 600; padding: 8px 12px; border-radius: 6px; margin: 12px 0;

@@ -176,7 +176,8 @@ std::string testcase(const CaseResult& c, const std::string& classname) {
         body += reason.empty() ? "      <skipped/>\n"
                                : fmt::format("      <skipped message=\"{}\"/>\n", attr(reason));
     }
-    std::string warnings = checks_text(c, verdict_is(Verdict::Warn), "warning: ");
+    std::string warnings = checks_text(c, verdict_is(Verdict::Warn), "warning: ") +
+                           checks_text(c, verdict_is(Verdict::Waived), "waived: ");
     if (warnings.empty() && c.verdict == Verdict::Warn) warnings = c.message;
     if (!warnings.empty())
         body += fmt::format("      <system-out>{}</system-out>\n", escape(warnings));

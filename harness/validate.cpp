@@ -18,9 +18,13 @@
 #include "core/input_file.hpp"
 #include "core/strict_json.hpp"
 #include "plugins/plugin_loader.hpp"
+#include "references.hpp"
 #include "registry_location.hpp"
 #include "report.hpp"
 #include "report_junit.hpp"
+#include "ssh_signature.hpp"
+#include "validate_registry.hpp"
+#include "waivers.hpp"
 
 namespace acetate::harness {
 namespace {
@@ -127,12 +131,6 @@ bool all_pass(const std::vector<CaseResult>& results) {
     return true;
 }
 
-std::map<std::string, uint64_t> verdict_counts(const std::vector<CaseResult>& results) {
-    std::map<std::string, uint64_t> counts;
-    for (const CaseResult& r : results) ++counts[to_string(r.verdict)];
-    return counts;
-}
-
 // Integrated or validated plugins other than this one, found on the plugin search path with
 // the binary the registry recorded for them.
 std::vector<CompanionPlugin> find_companions(const Registry& registry, const PluginInfo& plugin,
@@ -165,46 +163,6 @@ std::vector<CompanionPlugin> find_companions(const Registry& registry, const Plu
     return out;
 }
 
-Result<void> record(const ValidateOptions& o, const PluginInfo& plugin, ValidationStage stage,
-                    const std::vector<CaseResult>& results, const std::string& report,
-                    const std::vector<CompanionPlugin>& companions) {
-    StageEvidence evidence;
-    evidence.harness_version = kHarnessVersion;
-    evidence.counts = verdict_counts(results);
-    evidence.report = report;
-    evidence.summary = fmt::format("{} cases at strictness {}, seed {}: all passed", results.size(),
-                                   o.strictness, o.seed);
-    if (stage == ValidationStage::Integrated) {
-        std::vector<std::string> ids;
-        for (const CompanionPlugin& c : companions) ids.push_back(c.id);
-        evidence.summary += ids.empty() ? "; no other integrated plugin yet"
-                                        : fmt::format("; with {}", fmt::join(ids, ", "));
-    }
-    return Registry::update(
-        o.registry,
-        [&](Registry& r) {
-            return r.record_evidence(plugin.id, plugin.version, plugin.binary_sha256,
-                                     plugin.source_digest, stage, evidence);
-        },
-        registry_markdown_path(o.registry));
-}
-
-Result<std::vector<std::string>> import_committed(const ValidateOptions& o,
-                                                  const PluginInfo& plugin) {
-    if (!o.signoffs) return std::vector<std::string>{};
-    auto signoffs = Registry::load(*o.signoffs);
-    if (!signoffs) return signoffs.error();
-    std::vector<std::string> imported;
-    ACETATE_TRY(Registry::update(
-        o.registry,
-        [&](Registry& r) -> Result<void> {
-            imported = import_signoffs(r, signoffs.value(), plugin);
-            return {};
-        },
-        registry_markdown_path(o.registry)));
-    return imported;
-}
-
 void print_summary(const ValidationReport& report) {
     std::printf("\n%-26s %-8s %s\n", "check", "verdict", "cases");
     for (const CheckSummary& s : summarize_checks(report)) {
@@ -215,32 +173,6 @@ void print_summary(const ValidationReport& report) {
         if (!s.first_failure.empty() && s.verdict != Verdict::Pass)
             std::printf("    %s\n", s.first_failure.c_str());
     }
-}
-
-std::vector<HistoryLine> history_of(const fs::path& registry_file, const PluginInfo& plugin) {
-    std::vector<HistoryLine> lines;
-    auto registry = Registry::load(registry_file);
-    if (!registry) return lines;
-    const RegistryEntry* e = registry->find(plugin.id, plugin.version);
-    if (!e) return lines;
-    if (e->review)
-        lines.push_back({e->review->at, "review (REVIEWED)", e->review->by, e->review->notes});
-    if (e->alpha_tested)
-        lines.push_back({e->alpha_tested->at, "ALPHA_TESTED evidence",
-                         e->alpha_tested->harness_version, e->alpha_tested->summary});
-    if (e->integrated)
-        lines.push_back({e->integrated->at, "INTEGRATED evidence", e->integrated->harness_version,
-                         e->integrated->summary});
-    if (e->promotion)
-        lines.push_back(
-            {e->promotion->at, "promotion (VALIDATED)", e->promotion->by, e->promotion->notes});
-    return lines;
-}
-
-ValidationStage current_stage(const fs::path& registry_file, const PluginInfo& p) {
-    auto registry = Registry::load(registry_file);
-    if (!registry) return ValidationStage::Unvalidated;
-    return registry->effective_stage(p.id, p.version, p.binary_sha256, p.source_digest);
 }
 
 // The describe child's own error: what follows kDescribeErrorMarker on the last log line that
@@ -341,35 +273,6 @@ Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugi
     return plugin_info_from_json(*parsed, out.string());
 }
 
-std::vector<std::string> import_signoffs(Registry& registry, const Registry& signoffs,
-                                         const PluginInfo& p) {
-    std::vector<std::string> imported;
-    const RegistryEntry* committed = signoffs.find(p.id, p.version);
-    if (!committed) return imported;
-    const ValidationStage stage =
-        registry.effective_stage(p.id, p.version, p.binary_sha256, p.source_digest);
-    auto at = [&](const SignOff& s) { registry.set_clock([t = s.at] { return t; }); };
-    if (committed->review && committed->review->source_digest == p.source_digest &&
-        stage == ValidationStage::Unvalidated) {
-        at(*committed->review);
-        if (registry.record_review(p.id, p.version, p.binary_sha256, p.source_digest,
-                                   committed->review->by, committed->review->notes))
-            imported.push_back(
-                fmt::format("review by {} ({})", committed->review->by, committed->review->at));
-    }
-    if (committed->promotion && committed->promotion->source_digest == p.source_digest &&
-        registry.effective_stage(p.id, p.version, p.binary_sha256, p.source_digest) ==
-            ValidationStage::Integrated) {
-        at(*committed->promotion);
-        if (registry.promote(p.id, p.version, committed->promotion->by,
-                             committed->promotion->notes))
-            imported.push_back(fmt::format("promotion by {} ({})", committed->promotion->by,
-                                           committed->promotion->at));
-    }
-    registry.set_clock(utc_now_iso8601);
-    return imported;
-}
-
 int run_validate(const ValidateOptions& o) {
     const auto start = Clock::now();
     ValidationReport report;
@@ -425,15 +328,16 @@ int run_validate(const ValidateOptions& o) {
     // A malformed registry stops the run here, rather than reading as "nothing recorded".
     if (auto registry = Registry::load(o.registry); !registry)
         return fail_run(registry.error().message);
+    // So do malformed references; missing ones mean the reference cases only render.
+    auto references = load_references(o.references, plugin.id);
+    if (!references) return fail_run(references.error().message);
     const bool partial = !o.only_cases.empty();
     if (!partial) {
         auto imported = import_committed(o, plugin);
         if (!imported) return fail_run(imported.error().message);
-        for (const std::string& line : imported.value())
-            std::printf("imported the committed %s from %s\n", line.c_str(),
-                        o.signoffs->string().c_str());
+        for (const std::string& line : imported.value()) std::printf("%s\n", line.c_str());
     }
-    const ValidationStage before = current_stage(o.registry, plugin);
+    const ValidationStage before = current_stage(o, plugin);
     report.stage_before = to_string(before);
     std::printf(
         "validating %s %s (%s, %s, %s) from %s\nregistry %s: %s; strictness %d, seed "
@@ -464,6 +368,8 @@ int run_validate(const ValidateOptions& o) {
     run.timeout_seconds = o.timeout_seconds;
     run.reproduce = [&o](const CaseSpec& spec) { return reproduce_command(o, spec.id); };
     bool recording_failed = false;
+    // The failing case that stands for references blessed for another source (set below).
+    std::optional<CaseResult> stale_references;
     // Which stages may be recorded: each needs the one before it, for this binary and source.
     auto try_stage = [&](ValidationStage stage, const std::vector<CaseSpec>& cases,
                          const std::vector<CompanionPlugin>& companions) {
@@ -472,8 +378,13 @@ int run_validate(const ValidateOptions& o) {
         run.total += cases.size() * std::max(1u, o.repeat);
         std::vector<CaseResult> results = run_repeated(run, cases, {o.repeat, o.shuffle_seed});
         compare_across_processes(results, o.report_directory);
+        if (stage == ValidationStage::AlphaTested && stale_references && !partial)
+            results.push_back(*stale_references);
+        apply_waivers(results,
+                      waivers_of(o.registry, plugin.id, plugin.version, plugin.source_digest),
+                      utc_today());
         stage_run.passed = all_pass(results);
-        const ValidationStage now = current_stage(o.registry, plugin);
+        const ValidationStage now = current_stage(o, plugin);
         if (!stage_run.passed) {
             stage_run.note = "a check failed: nothing recorded";
         } else if (partial) {
@@ -519,7 +430,13 @@ int run_validate(const ValidateOptions& o) {
                 return fail_run(fmt::format("--case {}: no such case at strictness {} (cases: {})",
                                             id, o.strictness, fmt::join(known, ", ")));
     }
-    const auto alpha_cases = select(plan_cases(plugin, o.strictness, o.seed, true, false, {}));
+    auto alpha_cases = select(plan_cases(plugin, o.strictness, o.seed, true, false, {}));
+    stale_references = attach_references(alpha_cases, references.value(), plugin);
+    if (!references.value())
+        std::printf("references: none blessed for %s in %s (the reference cases only render)\n",
+                    plugin.id.c_str(), o.references.string().c_str());
+    else if (stale_references)
+        std::printf("references: %s\n", stale_references->message.c_str());
     if (partial && o.up_to < ValidationStage::Integrated &&
         alpha_cases.size() != o.only_cases.size())
         return fail_run("--case: integration cases do not run with --stage alpha-tested");
@@ -528,6 +445,8 @@ int run_validate(const ValidateOptions& o) {
         std::vector<std::string> notes;
         auto registry = Registry::load(o.registry);
         std::vector<CompanionPlugin> companions;
+        // A companion is loaded into this process: only one whose sign-offs hold.
+        if (registry) registry->verify_sign_offs(SignatureVerifier(o.allowed_signers));
         if (registry) companions = find_companions(*registry, plugin, o.plugin_paths, notes);
         for (const std::string& note : notes) std::printf("note: %s\n", note.c_str());
         std::printf("integration: with %zu other integrated plugin%s%s\n", companions.size(),
@@ -539,13 +458,11 @@ int run_validate(const ValidateOptions& o) {
         if (passed && !partial) {
             auto imported = import_committed(o, plugin);
             if (!imported) return fail_run(imported.error().message);
-            for (const std::string& line : imported.value())
-                std::printf("imported the committed %s from %s\n", line.c_str(),
-                            o.signoffs->string().c_str());
+            for (const std::string& line : imported.value()) std::printf("%s\n", line.c_str());
         }
     }
-    report.stage_after = to_string(current_stage(o.registry, plugin));
-    report.history = history_of(o.registry, plugin);
+    report.stage_after = to_string(current_stage(o, plugin));
+    report.history = history_of(o, plugin);
     print_summary(report);
     std::printf("\n%s %s: %s -> %s; %s\n", plugin.id.c_str(), plugin.version.c_str(),
                 report.stage_before.c_str(), report.stage_after.c_str(),

@@ -41,6 +41,8 @@ struct ValidateOptions {
     std::optional<uint64_t> shuffle_seed;  // --shuffle: run every case's runs in random order
     std::filesystem::path registry;
     std::optional<std::filesystem::path> signoffs;    // committed sign-offs to import
+    std::filesystem::path allowed_signers;            // the keys that verify every sign-off
+    std::filesystem::path references;                 // blessed images: <root>/<plugin id>/
     std::vector<std::filesystem::path> plugin_paths;  // where integrated companions are found
     std::filesystem::path self;                       // this executable, for the children
 };
@@ -55,11 +57,5 @@ Result<PluginInfo> describe_in_child(const std::filesystem::path& self,
                                      const std::filesystem::path& plugin,
                                      const std::filesystem::path& work_directory,
                                      double timeout_seconds);
-
-// Copies into `registry` the sign-offs `signoffs` holds for this plugin's id, version and
-// source digest that the registry lacks: a review always, a promotion only once the plugin is
-// INTEGRATED (a promotion cannot skip stages). Returns what was imported, for the log.
-std::vector<std::string> import_signoffs(Registry& registry, const Registry& signoffs,
-                                         const PluginInfo& plugin);
 
 }  // namespace acetate::harness

@@ -4,7 +4,8 @@
 set -euo pipefail
 # Build: compilers, CMake, the libraries. Tests: GoogleTest, Benchmark, clang-format (the
 # format check), git and debootstrap (scripts/fresh-machine.sh's own tests), xmllint (the
-# JUnit schema test).
+# JUnit schema test). Run time: openssh-client (ssh-keygen signs and verifies maintainers'
+# sign-offs).
 packages=(
   cmake g++ make pkg-config git
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-dev glslang-tools
@@ -12,6 +13,7 @@ packages=(
   libboost-dev libboost-filesystem-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libglm-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev clang-format debootstrap libxml2-utils
+  openssh-client
   "$@"
 )
 missing=()

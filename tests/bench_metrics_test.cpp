@@ -1,4 +1,4 @@
-// acetate-bench's error metrics (bench/image_error.hpp) by known answers worked out by hand:
+// acetate-bench's error metrics (host/scene/image_compare.hpp) by known answers worked out by hand:
 // the half-float spacing, the statistics of compare_images (identical images, one rounding at
 // 1.0, the subnormals, the top of the half range, NaN, shares at their strict thresholds), the
 // heat map's colours and the Pareto front. No GPU needed.
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "image_error.hpp"
+#include "scene/image_compare.hpp"
 
 namespace acetate::bench {
 namespace {

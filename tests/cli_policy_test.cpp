@@ -24,6 +24,7 @@
 #include "registry_location.hpp"
 #include "scene/image_io.hpp"
 #include "test_files.hpp"
+#include "test_signer.hpp"
 
 namespace acetate {
 namespace {
@@ -101,8 +102,8 @@ class HostPolicy : public ::testing::Test {
             " XDG_CACHE_HOME=" +
             test::shell_quote(xdg_env && *xdg_env ? xdg_env : (cache / "xdg").string()) +
             " LD_DEBUG=files LD_DEBUG_OUTPUT=" + test::shell_quote((ld_dir / "ld").string()) + " " +
-            env + " " + test::shell_quote(ACETATE_CLI_PATH) + " render " + args +
-            " --plugin-path " + test::shell_quote(plugins_.string());
+            test::signer_environment() + " " + env + " " + test::shell_quote(ACETATE_CLI_PATH) +
+            " render " + args + " --plugin-path " + test::shell_quote(plugins_.string());
         const int raw = std::system((run.command + " >" + test::shell_quote(out_file.string()) +
                                      " 2>" + test::shell_quote(err_file.string()) + " </dev/null")
                                         .c_str());
@@ -145,12 +146,16 @@ class HostPolicy : public ::testing::Test {
         run.counts = {{"PASS", 1}};
         Registry r;
         const std::string version = d.version_string();
-        ASSERT_TRUE(r.record_review(d.id, version, *sha, d.source_digest, "policy-test", ""));
+        SignOff review{"policy-test@example.org", utc_now_iso8601(), "", d.source_digest, ""};
+        test::sign(review, d.id, version, ValidationStage::Reviewed);
+        ASSERT_TRUE(r.record_review(d.id, version, *sha, d.source_digest, review));
         ASSERT_TRUE(r.record_evidence(d.id, version, *sha, d.source_digest,
                                       ValidationStage::AlphaTested, run));
         ASSERT_TRUE(r.record_evidence(d.id, version, *sha, d.source_digest,
                                       ValidationStage::Integrated, run));
-        ASSERT_TRUE(r.promote(d.id, version, "policy-test", ""));
+        SignOff promotion{"policy-test@example.org", utc_now_iso8601(), "", d.source_digest, ""};
+        test::sign(promotion, d.id, version, ValidationStage::Validated);
+        ASSERT_TRUE(r.promote(d.id, version, promotion));
         ASSERT_TRUE(r.is_validated(d.id, *sha));
         ASSERT_TRUE(r.save(file));
         validated_sha_ = *sha;
@@ -203,6 +208,46 @@ TEST_F(HostPolicy, AValidatedBinaryRenders) {
                  "ACETATE_REGISTRY=" + test::shell_quote((dir_ / "broken.json").string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(fs::exists(dir_ / "flag.png")) << run.describe();
+}
+
+// Writing the registry is not enough: the same entry with its promotion's signature removed
+// (a forged VALIDATED), or verified with keys that do not list the signer, is refused in one
+// line naming the entry and the sign-off, the library never opened.
+TEST_F(HostPolicy, AnEntryWhoseSignatureDoesNotHoldIsRefused) {
+    const fs::path registry = dir_ / "registry.json";
+    write_validated_registry(registry);
+    if (HasFatalFailure()) return;
+    std::string text = test::read_file(registry);
+    const size_t promotion = text.find("\"promotion\"");
+    ASSERT_NE(promotion, std::string::npos) << text;
+    const size_t signature = text.find(",\n        \"signature\"", promotion);
+    ASSERT_NE(signature, std::string::npos) << text;
+    text.erase(signature,
+               text.find('"', text.find("-----END SSH SIGNATURE-----", signature)) + 1 - signature);
+    test::write_text(dir_ / "forged.json", text);
+
+    struct Refusal {
+        std::string registry_flag, expected;
+    };
+    const std::vector<Refusal> refusals = {
+        {"--registry " + test::shell_quote((dir_ / "forged.json").string()),
+         "acetate.lighting 1.0.0 is INTEGRATED for this binary: the promotion by "
+         "policy-test@example.org is not trusted: its signature is missing"},
+        {"--registry " + test::shell_quote(registry.string()) + " --allowed-signers " +
+             test::shell_quote(
+                 (fs::path(ACETATE_SOURCE_VALIDATION_DIR) / "allowed_signers").string()),
+         "acetate.lighting 1.0.0 is UNVALIDATED for this binary: the review by "
+         "policy-test@example.org is not trusted: its signature was made by a key that "
+         "allowed_signers does not list"}};
+    for (const Refusal& r : refusals) {
+        const CliRun run = render("scene.json -o out.png " + r.registry_flag);
+        EXPECT_EQ(run.code, 1) << run.describe();
+        const auto lines = test::nonempty_lines(run.err);
+        ASSERT_EQ(lines.size(), 1u) << run.describe();
+        EXPECT_TRUE(contains(lines[0], r.expected)) << lines[0];
+        EXPECT_FALSE(opened_the_copy(run, plugin_file())) << run.describe();
+        EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+    }
 }
 
 // (c) One byte changed after validation: another binary, refused before it is opened.

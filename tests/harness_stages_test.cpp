@@ -20,6 +20,7 @@
 #include "registry.hpp"
 #include "scene/image_io.hpp"
 #include "test_files.hpp"
+#include "test_signer.hpp"
 
 namespace acetate {
 namespace {
@@ -63,11 +64,11 @@ class HarnessStages : public ::testing::Test {
 
     // `acetate-harness --registry REGISTRY ARGS` in the test folder.
     CommandResult harness(const std::string& args, const fs::path& registry) const {
-        return test::run_command("cd " + shell_quote(dir_.string()) + " && " +
-                                     test::harness_environment() + " " +
-                                     shell_quote(ACETATE_HARNESS_PATH) + " --registry " +
-                                     shell_quote(registry.string()) + " " + args,
-                                 dir_);
+        return test::run_command(
+            "cd " + shell_quote(dir_.string()) + " && " + test::harness_environment() + " " +
+                test::signer_environment() + " " + shell_quote(ACETATE_HARNESS_PATH) +
+                " --registry " + shell_quote(registry.string()) + " " + args,
+            dir_);
     }
     CommandResult harness(const std::string& args) const { return harness(args, registry_); }
 
@@ -82,7 +83,7 @@ class HarnessStages : public ::testing::Test {
 
     CommandResult review(const fs::path& plugin, const fs::path& registry) const {
         return harness("review " + shell_quote(plugin.string()) +
-                           " --reviewer 'Rita Reviewer' --notes 'read the tint shader'",
+                           " --reviewer rita@example.org --notes 'read the tint shader'",
                        registry);
     }
 
@@ -130,9 +131,9 @@ class HarnessStages : public ::testing::Test {
     CommandResult render(const fs::path& out) const {
         return test::run_command(
             "cd " + shell_quote(dir_.string()) + " && " + test::harness_environment() + " " +
-                shell_quote(ACETATE_CLI_PATH) + " render scene.json -o " +
-                shell_quote(out.string()) + " --plugin-path " + shell_quote(plugins_.string()) +
-                " --registry " + shell_quote(registry_.string()),
+                test::signer_environment() + " " + shell_quote(ACETATE_CLI_PATH) +
+                " render scene.json -o " + shell_quote(out.string()) + " --plugin-path " +
+                shell_quote(plugins_.string()) + " --registry " + shell_quote(registry_.string()),
             dir_);
     }
 
@@ -179,7 +180,8 @@ TEST_F(HarnessStages, ThroughEveryStageToTheHostAndBackAfterARebuild) {
     // A promotion needs INTEGRATED: refused at UNVALIDATED, and at REVIEWED.
     {
         SCOPED_TRACE("promote too early");
-        CommandResult run = harness("promote " + shell_quote(plugin().string()) + " --by Pat");
+        CommandResult run =
+            harness("promote " + shell_quote(plugin().string()) + " --by pat@example.org");
         EXPECT_EQ(run.code, 1) << run.describe();
         auto lines = test::nonempty_lines(run.err);
         ASSERT_EQ(lines.size(), 1u) << run.describe();
@@ -193,11 +195,11 @@ TEST_F(HarnessStages, ThroughEveryStageToTheHostAndBackAfterARebuild) {
         const json e = entry(registry_);
         ASSERT_FALSE(e.is_null());
         EXPECT_EQ(e["stage"], "REVIEWED");
-        EXPECT_EQ(e["review"]["by"], "Rita Reviewer");
+        EXPECT_EQ(e["review"]["by"], "rita@example.org");
         EXPECT_EQ(e["review"]["notes"], "read the tint shader");
         EXPECT_EQ(e["binary_sha256"], old_sha);
 
-        run = harness("promote " + shell_quote(plugin().string()) + " --by Pat");
+        run = harness("promote " + shell_quote(plugin().string()) + " --by pat@example.org");
         EXPECT_EQ(run.code, 1) << run.describe();
         lines = test::nonempty_lines(run.err);
         ASSERT_EQ(lines.size(), 1u) << run.describe();
@@ -223,17 +225,40 @@ TEST_F(HarnessStages, ThroughEveryStageToTheHostAndBackAfterARebuild) {
         EXPECT_EQ(e["stage"], "INTEGRATED");
         EXPECT_EQ(e["integrated"]["binary_sha256"], old_sha);
 
-        const CommandResult promote = harness("promote " + shell_quote(plugin().string()) +
-                                              " --by 'Pat Promoter' --notes 'evidence read'");
+        // Evidence at strictness 1, below the default: promotion refuses it until a waiver
+        // says why, and shows it either way.
+        const std::string promote_command = "promote " + shell_quote(plugin().string()) +
+                                            " --by pat@example.org --notes "
+                                            "'evidence read'";
+        const CommandResult refused = harness(promote_command);
+        EXPECT_EQ(refused.code, 1) << refused.describe();
+        EXPECT_TRUE(contains(refused.out, "evidence at strictness 1, below the default 5"))
+            << refused.describe();
+        const auto lines = test::nonempty_lines(refused.err);
+        ASSERT_EQ(lines.size(), 1u) << refused.describe();
+        EXPECT_TRUE(contains(lines[0],
+                             "promotion refused: its evidence was taken at strictness "
+                             "1, below the default 5"))
+            << lines[0];
+        EXPECT_EQ(entry(registry_)["stage"], "INTEGRATED");
+        const CommandResult waived =
+            harness("waive " + shell_quote(plugin().string()) +
+                    " strictness --reason 'a test: strictness 1 keeps it under a minute' "
+                    "--until 2099-12-31 --by pat@example.org");
+        EXPECT_EQ(waived.code, 0) << waived.describe();
+
+        const CommandResult promote = harness(promote_command);
+        EXPECT_TRUE(contains(promote.out, "waiver: strictness until 2099-12-31"))
+            << promote.describe();
         EXPECT_EQ(promote.code, 0) << promote.describe();
         EXPECT_TRUE(contains(promote.out, "promoted to VALIDATED")) << promote.describe();
         const json after = entry(registry_);
         EXPECT_EQ(after["stage"], "VALIDATED");
-        EXPECT_EQ(after["promotion"]["by"], "Pat Promoter");
+        EXPECT_EQ(after["promotion"]["by"], "pat@example.org");
         const std::string markdown = test::read_file(dir_ / "VALIDATION-REGISTRY.md");
         EXPECT_TRUE(contains(markdown, kId)) << markdown;
         EXPECT_TRUE(contains(markdown, "VALIDATED")) << markdown;
-        EXPECT_TRUE(contains(markdown, "Pat Promoter")) << markdown;
+        EXPECT_TRUE(contains(markdown, "pat@example.org")) << markdown;
     }
 
     // The host loads the validated copy.
@@ -286,7 +311,7 @@ TEST_F(HarnessStages, ThroughEveryStageToTheHostAndBackAfterARebuild) {
         EXPECT_EQ(e["binary_sha256"], new_sha);
         EXPECT_EQ(e["alpha_tested"]["binary_sha256"], new_sha);
         EXPECT_EQ(e["integrated"]["binary_sha256"], new_sha);
-        EXPECT_EQ(e["promotion"]["by"], "Pat Promoter");
+        EXPECT_EQ(e["promotion"]["by"], "pat@example.org");
 
         const CommandResult again = render(dir_ / "rebuilt.png");
         EXPECT_EQ(again.code, 0) << again.describe();
@@ -307,12 +332,21 @@ TEST_F(HarnessStages, CommittedSignOffsTakeAFreshRegistryToValidated) {
     ASSERT_EQ(source.size(), 64u) << "the plugin was built without a source digest";
     const std::string other_binary(64, 'a');
     ASSERT_NE(info["binary_sha256"], other_binary);
-    const json signoff = {{"by", "Maintainers"},
-                          {"at", "2026-01-02T03:04:05Z"},
-                          {"notes", "committed"},
-                          {"source_digest", source}};
-    json promotion = signoff;
-    promotion["at"] = "2026-01-02T03:05:06Z";
+    // Signed as a maintainer signs with review and promote.
+    const std::string version = info["version"].get<std::string>();
+    SignOff review{"maintainers@example.org", "2026-01-02T03:04:05Z", "committed", source, ""};
+    test::sign(review, kId, version, ValidationStage::Reviewed);
+    SignOff promoted{"maintainers@example.org", "2026-01-02T03:05:06Z", "committed", source, ""};
+    test::sign(promoted, kId, version, ValidationStage::Validated);
+    auto as_json = [](const SignOff& s) {
+        return json{{"by", s.by},
+                    {"at", s.at},
+                    {"notes", s.notes},
+                    {"source_digest", s.source_digest},
+                    {"signature", s.signature}};
+    };
+    const json signoff = as_json(review);
+    const json promotion = as_json(promoted);
     const json file = {{"format", "acetate-registry/1"},
                        {"plugins",
                         {{{"id", kId},
@@ -327,12 +361,27 @@ TEST_F(HarnessStages, CommittedSignOffsTakeAFreshRegistryToValidated) {
     ASSERT_TRUE(parsed) << parsed.error().message;
 
     EXPECT_EQ(stage(registry_), "UNVALIDATED");
-    const CommandResult run = validate(plugin(), registry_, dir_ / "report",
-                                       "--signoffs " + shell_quote(signoffs.string()));
+    const std::string with_signoffs = "--signoffs " + shell_quote(signoffs.string());
+    // At strictness 1 the review is imported and the stages recorded, but not the promotion:
+    // evidence below the default strictness is promoted only under a waiver.
+    CommandResult run = validate(plugin(), registry_, dir_ / "report", with_signoffs);
     EXPECT_EQ(run.code, 0) << run.describe();
-    EXPECT_TRUE(contains(run.out, "imported the committed review by Maintainers"))
+    EXPECT_TRUE(contains(run.out, "imported the committed review by maintainers@example.org"))
         << run.describe();
-    EXPECT_TRUE(contains(run.out, "imported the committed promotion by Maintainers"))
+    EXPECT_TRUE(contains(run.out, "not imported from " + signoffs.string() +
+                                      ": the promotion by maintainers@example.org: " + kId + " " +
+                                      version +
+                                      ": promotion refused: its evidence was taken at "
+                                      "strictness 1"))
+        << run.describe();
+    EXPECT_EQ(stage(registry_), "INTEGRATED");
+    run = harness("waive " + shell_quote(plugin().string()) +
+                  " strictness --reason 'a test at strictness 1' --until 2099-12-31 --by "
+                  "maintainers@example.org");
+    EXPECT_EQ(run.code, 0) << run.describe();
+    run = validate(plugin(), registry_, dir_ / "report", with_signoffs);
+    EXPECT_EQ(run.code, 0) << run.describe();
+    EXPECT_TRUE(contains(run.out, "imported the committed promotion by maintainers@example.org"))
         << run.describe();
     EXPECT_TRUE(contains(run.out, "-> VALIDATED")) << run.describe();
     const json e = entry(registry_);

@@ -106,7 +106,7 @@ TEST(Registry, StagesAdvanceInOrder) {
     EXPECT_EQ(stage_of(r, kBinaryA, kSource1), Stage::Reviewed);
     const RegistryEntry* e = r.find(kId, kVersion);
     ASSERT_NE(e, nullptr);
-    EXPECT_EQ(e->review, (SignOff{"alice", kNow, "read it all", kSource1}));
+    EXPECT_EQ(e->review, (SignOff{"alice", kNow, "read it all", kSource1, ""}));
 
     ASSERT_TRUE(
         r.record_evidence(kId, kVersion, kBinaryA, kSource1, Stage::AlphaTested, passing_run()));
@@ -121,7 +121,7 @@ TEST(Registry, StagesAdvanceInOrder) {
     EXPECT_EQ(e->stage(), Stage::Validated);
     EXPECT_EQ(e->alpha_tested->binary_sha256, kBinaryA);
     EXPECT_EQ(e->alpha_tested->at, kNow);
-    EXPECT_EQ(e->promotion, (SignOff{"bob", kNow, "ok", kSource1}));
+    EXPECT_EQ(e->promotion, (SignOff{"bob", kNow, "ok", kSource1, ""}));
 }
 
 TEST(Registry, StageNamesParse) {

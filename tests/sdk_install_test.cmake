@@ -100,6 +100,8 @@ foreach(path
     ${LIBDIR}/cmake/Acetate/AcetateEmbedGlsl.cmake
     bin/acetate-harness
     share/acetate/validation/signoffs.json
+    share/acetate/validation/allowed_signers
+    share/acetate/validation/revoked_keys
     ${LIBDIR}/acetate/plugins/lighting.so)
   require_file("${prefix}/${path}")
 endforeach()
@@ -110,14 +112,14 @@ set(user_env "${CMAKE_COMMAND}" -E env --unset=ACETATE_REGISTRY "HOME=${WORK_DIR
 file(REMOVE_RECURSE "${WORK_DIR}/home" "${WORK_DIR}/xdg-data")
 run_step("installed acetate-harness status, XDG_DATA_HOME unset"
   ${user_env} --unset=XDG_DATA_HOME "${prefix}/bin/acetate-harness" status)
-if(NOT step_output MATCHES "registry ${WORK_DIR}/home/.local/share/acetate/registry.json\n")
+if(NOT step_output MATCHES "registry ${WORK_DIR}/home/.local/share/acetate/registry.json \\(sign-offs verified with ${prefix}/share/acetate/validation/allowed_signers\\)\n")
   message(FATAL_ERROR "sdk_install_test: with XDG_DATA_HOME unset, the installed harness does "
                       "not use ~/.local/share/acetate/registry.json:\n${step_output}")
 endif()
 set(xdg_env ${user_env} "XDG_DATA_HOME=${WORK_DIR}/xdg-data")
 set(xdg_registry "${WORK_DIR}/xdg-data/acetate/registry.json")
 run_step("installed acetate-harness status" ${xdg_env} "${prefix}/bin/acetate-harness" status)
-if(NOT step_output MATCHES "registry ${xdg_registry}\n")
+if(NOT step_output MATCHES "registry ${xdg_registry} ")
   message(FATAL_ERROR "sdk_install_test: the installed harness does not use "
                       "$XDG_DATA_HOME/acetate/registry.json:\n${step_output}")
 endif()

@@ -15,7 +15,9 @@
 #include <random>
 #include <thread>
 
+#include "bless_command.hpp"
 #include "case_runner.hpp"
+#include "cli/registry_commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
 #include "core/strict_json.hpp"
@@ -64,104 +66,6 @@ Result<PluginInfo> describe(const fs::path& plugin) {
     std::error_code ec;
     fs::remove_all(*scratch, ec);
     return info;
-}
-
-int run_review(const fs::path& plugin, const fs::path& registry, const std::string& reviewer,
-               const std::string& notes) {
-    auto info = describe(plugin);
-    if (!info) return fail(info.error().message);
-    auto updated = Registry::update(
-        registry,
-        [&](Registry& r) {
-            return r.record_review(info->id, info->version, info->binary_sha256,
-                                   info->source_digest, reviewer, notes);
-        },
-        registry_markdown_path(registry));
-    if (!updated) return fail(updated.error().message);
-    auto loaded = Registry::load(registry);
-    const ValidationStage stage =
-        loaded ? loaded->effective_stage(info->id, info->version, info->binary_sha256,
-                                         info->source_digest)
-               : ValidationStage::Reviewed;
-    std::printf("%s %s: review by %s recorded for source %s; now %s (registry %s)\n",
-                info->id.c_str(), info->version.c_str(), reviewer.c_str(),
-                info->source_digest.substr(0, 12).c_str(), to_string(stage),
-                registry.string().c_str());
-    return 0;
-}
-
-int run_promote(const fs::path& plugin, const fs::path& registry, const std::string& by,
-                const std::string& notes) {
-    auto info = describe(plugin);
-    if (!info) return fail(info.error().message);
-    auto updated = Registry::update(
-        registry,
-        [&](Registry& r) -> Result<void> {
-            // The promotion vouches for this file: it must be the binary the evidence is for.
-            const ValidationStage stage = r.effective_stage(
-                info->id, info->version, info->binary_sha256, info->source_digest);
-            if (stage == ValidationStage::Validated) return {};  // nothing to do; said below
-            if (stage != ValidationStage::Integrated)
-                return make_error(
-                    ErrorCode::InvalidInput,
-                    fmt::format("{} {}: this binary (SHA-256 {}) is {}, not INTEGRATED: run "
-                                "acetate-harness validate {} first",
-                                info->id, info->version, info->binary_sha256.substr(0, 12),
-                                to_string(stage), plugin.string()));
-            return r.promote(info->id, info->version, by, notes);
-        },
-        registry_markdown_path(registry));
-    if (!updated) return fail(updated.error().message);
-    auto after = Registry::load(registry);
-    const RegistryEntry* entry = after ? after->find(info->id, info->version) : nullptr;
-    if (entry && entry->promotion && entry->promotion->by != by)
-        std::printf(
-            "%s %s: already VALIDATED for this binary (promoted by %s at %s); nothing "
-            "recorded\n",
-            info->id.c_str(), info->version.c_str(), entry->promotion->by.c_str(),
-            entry->promotion->at.c_str());
-    else
-        std::printf("%s %s: promoted to VALIDATED by %s (registry %s)\n", info->id.c_str(),
-                    info->version.c_str(), by.c_str(), registry.string().c_str());
-    return 0;
-}
-
-int run_status(const fs::path& registry_file, bool as_json) {
-    auto registry = Registry::load(registry_file);
-    if (!registry) return fail(registry.error().message);
-    if (as_json) {
-        auto j = nlohmann::json::parse(registry->to_json());
-        j["registry"] = registry_file.string();
-        for (auto& entry : j["plugins"]) {
-            const RegistryEntry* e =
-                registry->find(entry["id"].get<std::string>(), entry["version"].get<std::string>());
-            if (e) entry["stage"] = to_string(e->stage());
-        }
-        std::printf("%s\n", j.dump(2).c_str());
-        return 0;
-    }
-    std::printf("registry %s\n", registry_file.string().c_str());
-    if (registry->entries().empty()) {
-        std::printf("no plugins recorded yet\n");
-        return 0;
-    }
-    std::printf("%-26s %-8s %-13s %-12s %-12s %s\n", "plugin", "version", "stage", "binary",
-                "source", "records");
-    for (const RegistryEntry& e : registry->entries()) {
-        std::string records;
-        auto add = [&](const std::string& text) {
-            records += (records.empty() ? "" : "; ") + text;
-        };
-        if (e.review) add(fmt::format("reviewed by {} {}", e.review->by, e.review->at));
-        if (e.alpha_tested) add(fmt::format("alpha-tested {}", e.alpha_tested->at));
-        if (e.integrated) add(fmt::format("integrated {}", e.integrated->at));
-        if (e.promotion) add(fmt::format("promoted by {} {}", e.promotion->by, e.promotion->at));
-        std::printf("%-26s %-8s %-13s %-12s %-12s %s\n", e.id.c_str(), e.version.c_str(),
-                    to_string(e.stage()), e.binary_sha256.substr(0, 12).c_str(),
-                    e.source_digest.substr(0, 12).c_str(), records.c_str());
-    }
-    std::printf("readable copy: %s\n", registry_markdown_path(registry_file).string().c_str());
-    return 0;
 }
 
 // Child: what the plugin declares, as JSON. Its own errors end with kDescribeFailure and one
@@ -227,6 +131,13 @@ int main(int argc, char** argv) {
                    "Registry file (default: $ACETATE_REGISTRY, else the build tree's "
                    "validation/registry.json, or $XDG_DATA_HOME/acetate/registry.json when "
                    "installed)");
+    std::optional<fs::path> allowed_signers_flag, references_flag;
+    app.add_option("--references", references_flag,
+                   "The golden references' root, <DIR>/<plugin id>/manifest.json (default: "
+                   "$ACETATE_REFERENCES, else validation/references)");
+    app.add_option("--allowed-signers", allowed_signers_flag,
+                   "The maintainers' keys that verify every sign-off (default: "
+                   "$ACETATE_ALLOWED_SIGNERS, else validation/allowed_signers)");
 
     ValidateOptions validate;
     std::string stage_name = "integrated";
@@ -288,19 +199,50 @@ int main(int argc, char** argv) {
     f->add_option("--report", fuzz_report, "Report folder (default ./harness-fuzz/<plugin>)");
     f->add_option("--reproduce", fuzz.reproduce, "Run only this case file (a shrunk case)");
 
-    fs::path review_plugin, promote_plugin;
-    std::string reviewer, review_notes, promoter, promote_notes;
-    CLI::App* r = app.add_subcommand("review", "Record a review sign-off (REVIEWED)");
+    fs::path review_plugin, promote_plugin, waive_plugin;
+    SignOffRequest review, promotion;
+    std::optional<fs::path> key_flag;
+    CLI::App* r = app.add_subcommand("review", "Sign a review of the plugin's source (REVIEWED)");
     r->add_option("plugin", review_plugin)->required();
-    r->add_option("--reviewer", reviewer, "Who reviewed the source")->required();
-    r->add_option("--notes", review_notes, "What was reviewed")->required();
-    CLI::App* p = app.add_subcommand("promote", "INTEGRATED -> VALIDATED");
+    r->add_option("--reviewer", review.by,
+                  "Who reviewed the source: the name validation/allowed_signers lists your key "
+                  "under")
+        ->required();
+    r->add_option("--notes", review.notes, "What was reviewed")->required();
+    CLI::App* p = app.add_subcommand("promote", "Sign the promotion INTEGRATED -> VALIDATED");
     p->add_option("plugin", promote_plugin)->required();
-    p->add_option("--by", promoter, "Who promotes it")->required();
-    p->add_option("--notes", promote_notes, "Why");
+    p->add_option("--by", promotion.by, "Who promotes it: the name your key is listed under")
+        ->required();
+    p->add_option("--notes", promotion.notes, "Why");
+    for (CLI::App* signing : {r, p})
+        signing->add_option("--key", key_flag,
+                            "Your SSH private key (or its .pub with ssh-agent) to sign with "
+                            "(default: $ACETATE_SIGNING_KEY)");
+    WaiveRequest waive;
+    CLI::App* w = app.add_subcommand(
+        "waive", "Accept one failing check for this plugin source, with a reason and an expiry");
+    w->add_option("plugin", waive_plugin)->required();
+    w->add_option("check", waive.check, "The check, or \"strictness\"")->required();
+    w->add_option("--reason", waive.reason, "Why the failure is acceptable")->required();
+    w->add_option("--until", waive.until, "The last day it holds, YYYY-MM-DD (UTC)")->required();
+    w->add_option("--by", waive.by, "Who waives it")->required();
     bool status_json = false;
     CLI::App* s = app.add_subcommand("status", "Show the registry");
     s->add_flag("--json", status_json, "As JSON");
+
+    BlessOptions bless;
+    std::optional<fs::path> bless_report;
+    bless.jobs = validate.jobs;
+    CLI::App* b = app.add_subcommand(
+        "bless", "Render the reference cases and store them as the plugin's golden references");
+    b->add_option("plugin", bless.plugin, "The plugin's shared library")->required();
+    b->add_option("--by", bless.by, "Who looked at the images and blesses them")->required();
+    b->add_option("--report", bless_report,
+                  "Where the cases run (default ./harness-bless/<plugin>)");
+    b->add_option("--jobs", bless.jobs, "Cases run at once")->check(CLI::Range(1, 256));
+    b->add_option("--timeout", bless.timeout_seconds, "Seconds a case may take")
+        ->check(CLI::Range(1.0, 3600.0))
+        ->default_val(120);
 
     fs::path describe_plugin_file, describe_out;
     CLI::App* d = app.add_subcommand("describe", "(child) Write what a plugin declares as JSON");
@@ -314,7 +256,7 @@ int main(int argc, char** argv) {
     c->add_option("--report", case_report)->required();
 
     // Options of the whole command (--registry) may also follow the subcommand.
-    for (CLI::App* sub : {v, r, p, s}) sub->fallthrough();
+    for (CLI::App* sub : {v, r, p, s, w, b}) sub->fallthrough();
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -340,6 +282,8 @@ int main(int argc, char** argv) {
             validate.up_to = stage_name == "alpha-tested" ? ValidationStage::AlphaTested
                                                           : ValidationStage::Integrated;
             validate.registry = registry;
+            validate.allowed_signers = allowed_signers_path(allowed_signers_flag);
+            validate.references = references_path(references_flag);
             validate.self = self_path();
             validate.signoffs = no_signoffs     ? std::nullopt
                                 : signoffs_flag ? signoffs_flag
@@ -355,9 +299,33 @@ int main(int argc, char** argv) {
             if (shuffle) validate.shuffle_seed = std::random_device{}();
             return run_validate(validate);
         }
-        if (r->parsed()) return run_review(review_plugin, registry, reviewer, review_notes);
-        if (p->parsed()) return run_promote(promote_plugin, registry, promoter, promote_notes);
-        if (s->parsed()) return run_status(registry, status_json);
+        if (b->parsed()) {
+            std::error_code ec;
+            if (!fs::is_regular_file(bless.plugin, ec))
+                return fail(fmt::format("{}: no such plugin file", bless.plugin.string()));
+            bless.plugin = fs::absolute(bless.plugin);
+            bless.references = references_path(references_flag);
+            bless.report_directory = fs::absolute(
+                bless_report ? *bless_report : fs::path("harness-bless") / bless.plugin.stem());
+            bless.self = self_path();
+            return run_bless(bless);
+        }
+        RegistryCommandContext context{
+            registry, SignatureVerifier(allowed_signers_path(allowed_signers_flag)), key_flag,
+            references_path(references_flag)};
+        if (!context.signing_key)
+            if (const char* env = std::getenv("ACETATE_SIGNING_KEY"); env && *env)
+                context.signing_key = fs::path(env);
+        if (s->parsed()) return run_status(context, status_json);
+        for (auto [sub, file] : {std::pair{r, &review_plugin}, std::pair{p, &promote_plugin},
+                                 std::pair{w, &waive_plugin}}) {
+            if (!sub->parsed()) continue;
+            auto info = describe(*file);
+            if (!info) return fail(info.error().message);
+            if (sub == r) return run_review(*info, context, review);
+            if (sub == p) return run_promote(*info, context, promotion);
+            return run_waive(*info, context, waive);
+        }
         if (d->parsed()) return run_describe(describe_plugin_file, describe_out);
         if (c->parsed()) return run_case_command(case_info, case_file, case_out, case_report);
     } catch (const std::exception& e) {

@@ -43,6 +43,9 @@ int main(int argc, char** argv) {
                     "Validation registry that decides which plugins load (default: "
                     "ACETATE_REGISTRY, else the build tree's validation/registry.json, or "
                     "$XDG_DATA_HOME/acetate/registry.json when installed)");
+    cmd->add_option("--allowed-signers", render.allowed_signers,
+                    "The maintainers' keys that verify the registry's sign-offs (default: "
+                    "ACETATE_ALLOWED_SIGNERS, else validation/allowed_signers)");
     cmd->add_flag("--allow-unvalidated", render.allow_unvalidated,
                   "Load plugins the registry does not have VALIDATED for their exact binary, "
                   "with a warning");

@@ -18,6 +18,7 @@
 #include "render/renderer.hpp"
 #include "scene/image_io.hpp"
 #include "scene/scene.hpp"
+#include "ssh_signature.hpp"
 #include "vulkan/pipeline_cache_file.hpp"
 #include "vulkan/vulkan_context.hpp"
 
@@ -52,20 +53,28 @@ bool names_a_plugin(const SceneDesc& scene) {
 // (for a file loaded by path, with no id yet, any plugin VALIDATED for that SHA-256). Any
 // other file is refused with one line naming it, the stage the registry holds for it and
 // why; with --allow-unvalidated it is admitted with one warning line instead.
-// `registry_name` is how the messages name it: "registry FILE".
+// `registry_name` is how the messages name it: "registry FILE". Only sign-offs whose signatures
+// `verifier` accepts count, and only the entries for this binary are checked (each check runs
+// ssh-keygen).
 PluginLoader::Admission load_policy(std::shared_ptr<const Registry> registry,
-                                    std::string registry_name, bool allow_unvalidated) {
+                                    std::string registry_name, SignatureVerifier verifier,
+                                    bool allow_unvalidated) {
     return [registry = std::move(registry), registry_name = std::move(registry_name),
+            verifier = std::move(verifier),
             allow_unvalidated](const std::string& id, const std::filesystem::path& file,
                                const std::filesystem::path& contents) -> Result<void> {
         auto sha = file_sha256(contents);  // the open file that will be loaded, not the path
         if (!sha) return sha.error();
-        if (registry->binary_stage(id, sha.value()) == ValidationStage::Validated) return {};
+        Registry trusted = *registry;
+        trusted.verify_sign_offs(verifier, [&](const RegistryEntry& e) {
+            return e.binary_sha256 == sha.value() && (id.empty() || e.id == id);
+        });
+        if (trusted.binary_stage(id, sha.value()) == ValidationStage::Validated) return {};
         const std::string plugin =
             id.empty() ? file.string() : fmt::format("{} ({})", id, file.string());
         const std::string why =
             fmt::format("not VALIDATED for this binary (SHA-256 {}): {}: {}", sha->substr(0, 12),
-                        registry_name, registry->explain(id, *sha));
+                        registry_name, trusted.explain(id, *sha));
         if (allow_unvalidated) {
             std::fprintf(stderr, "acetate: warning: loading unvalidated plugin %s: %s\n",
                          plugin.c_str(), why.c_str());
@@ -121,6 +130,7 @@ std::vector<RunFile> run_inputs(const RenderCommand& command,
             }
     }
     in.push_back({registry_path(command.registry), "the registry"});
+    in.push_back({allowed_signers_path(command.allowed_signers), "the allowed signers"});
     return in;
 }
 
@@ -204,7 +214,9 @@ int run_render(const RenderCommand& command) {
     if (!renderer) return fail(renderer.error());
     if (registry)
         (*renderer)->plugins().set_admission(
-            load_policy(registry, registry_name, command.allow_unvalidated));
+            load_policy(registry, registry_name,
+                        SignatureVerifier(allowed_signers_path(command.allowed_signers)),
+                        command.allow_unvalidated));
 
     nlohmann::json scene_reports = nlohmann::json::array();
     const bool several_scenes = scenes.size() > 1;

@@ -23,7 +23,10 @@ struct RenderCommand {
     // Host load policy (docs/registry.md, "Host policy"): a plugin is loaded only if the
     // registry has it VALIDATED for its exact binary.
     std::optional<std::filesystem::path> registry;  // --registry FILE, else ACETATE_REGISTRY
-    bool allow_unvalidated = false;                 // --allow-unvalidated: load with a warning
+    // --allowed-signers FILE, else ACETATE_ALLOWED_SIGNERS, else validation/allowed_signers:
+    // the maintainers' keys; a sign-off whose signature they do not verify does not count.
+    std::optional<std::filesystem::path> allowed_signers;
+    bool allow_unvalidated = false;  // --allow-unvalidated: load with a warning
 };
 
 // Runs the command; prints progress to stdout and one-line errors to stderr. Returns the exit

@@ -1,5 +1,4 @@
-// Error metrics of acetate-bench (image_error.hpp).
-#include "image_error.hpp"
+#include "scene/image_compare.hpp"
 
 #include <fmt/format.h>
 
@@ -7,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace acetate::bench {
+namespace acetate {
 
 namespace {
 
@@ -155,4 +154,4 @@ std::vector<bool> pareto_front(const std::vector<std::pair<double, double>>& cos
     return front;
 }
 
-}  // namespace acetate::bench
+}  // namespace acetate

@@ -1,19 +1,43 @@
 #pragma once
-// acetate-bench's error metrics: one rendered image against the reference configuration's, the
-// heat map of where they differ, and the Pareto front of speed against error. Plain CPU code,
-// so every number the reports print is checked by known answers without a GPU
-// (tests/bench_metrics_test.cpp).
+// One rendered image against a reference: the error in half-float roundings, mean, PSNR and the
+// share of pixels over idiff-style thresholds, the heat map of where they differ, and the
+// Pareto front of speed against error. acetate-bench compares presets with it, the harness
+// compares a plugin's output with its blessed references. Plain CPU code, so every number is
+// checked by known answers without a GPU (tests/bench_metrics_test.cpp).
 
 #include <array>
 #include <cstdint>
 #include <utility>
 #include <vector>
 
-#include "bench_results.hpp"
 #include "core/result.hpp"
 #include "scene/image_io.hpp"
 
-namespace acetate::bench {
+namespace acetate {
+
+// idiff-style thresholds on a pixel's largest channel difference (absolute, linear light).
+struct ErrorThresholds {
+    // One half-float rounding at 1.0 (2^-10): below it, rgba16f cannot tell the images apart.
+    double warn = 1.0 / 1024.0;
+    // Four 8-bit steps at full scale (4/255): a difference a person can see on a display.
+    double fail = 4.0 / 255.0;
+};
+
+struct ErrorStats {
+    uint64_t pixels = 0;
+    // Largest |test - reference| over pixels and channels, in units of the half-float spacing
+    // at the reference value (2^-24 below 2^-14, the subnormals; 2^(e-10) for a value in
+    // [2^e, 2^(e+1))). 0 when identical.
+    double max_roundings = 0;
+    double max_abs = 0;   // largest |test - reference|
+    double mean_abs = 0;  // mean |test - reference| over every channel of every pixel
+    // 10 log10(1 / MSE) with peak 1.0 (display white in linear light), over every channel;
+    // infinite when the images are identical.
+    double psnr_db = 0;
+    double warn_share = 0;  // share of pixels whose largest channel difference > warn
+    double fail_share = 0;  // ... > fail
+    bool finite = true;     // no NaN or infinity in the test image
+};
 
 // The spacing of half floats (IEEE binary16) at `reference_value`: what one rounding of an
 // rgba16f target can move a value there. 2^-24 for |r| < 2^-14 (the subnormals, evenly spaced);
@@ -59,4 +83,4 @@ Result<ErrorStats> compare_images(const ImageRGBA& test, const ImageRGBA& refere
 // dominates nothing.
 std::vector<bool> pareto_front(const std::vector<std::pair<double, double>>& cost_error);
 
-}  // namespace acetate::bench
+}  // namespace acetate
