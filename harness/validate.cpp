@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <set>
 #include <sstream>
 
 #include "case_batch.hpp"
@@ -22,6 +24,7 @@
 #include "registry_location.hpp"
 #include "report.hpp"
 #include "report_junit.hpp"
+#include "shard.hpp"
 #include "ssh_signature.hpp"
 #include "validate_registry.hpp"
 #include "waivers.hpp"
@@ -273,6 +276,26 @@ Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugi
     return plugin_info_from_json(*parsed, out.string());
 }
 
+int run_list_cases(const ValidateOptions& o) {
+    std::string scratch = (fs::temp_directory_path() / "acetate-harness-list-XXXXXX").string();
+    if (!mkdtemp(scratch.data())) {
+        std::fprintf(stderr, "acetate-harness: %s: cannot create a temporary folder\n",
+                     scratch.c_str());
+        return 1;
+    }
+    auto described = describe_in_child(o.self, o.plugin, scratch, o.timeout_seconds);
+    std::error_code ec;
+    fs::remove_all(scratch, ec);
+    if (!described) {
+        std::fprintf(stderr, "acetate-harness: %s\n", described.error().message.c_str());
+        return 1;
+    }
+    for (const CaseSpec& c : plan_cases(*described, o.strictness, o.seed, true,
+                                        o.up_to >= ValidationStage::Integrated, {}))
+        std::printf("%s\n", c.id.c_str());
+    return 0;
+}
+
 int run_validate(const ValidateOptions& o) {
     const auto start = Clock::now();
     ValidationReport report;
@@ -311,9 +334,21 @@ int run_validate(const ValidateOptions& o) {
     // Every child runs with the Khronos validation layer: a validation message while the
     // plugin runs fails the vulkan-validation check, and evidence is never recorded without.
     setenv("ACETATE_VALIDATION", "1", 1);
-    auto described = describe_in_child(o.self, o.plugin, o.report_directory, o.timeout_seconds);
+    const bool merging = !o.merge_from.empty();
+    std::vector<ShardResult> shards;
+    if (merging) {
+        auto read = read_shard_results(o.merge_from);
+        if (!read) return fail_run(read.error().message);
+        shards = std::move(read.value());
+        if (shards.front().strictness != o.strictness || shards.front().seed != o.seed)
+            return fail_run("merge: the options' strictness and seed must be the shards'");
+    }
+    auto described =
+        merging ? Result<PluginInfo>(shards.front().plugin)
+                : describe_in_child(o.self, o.plugin, o.report_directory, o.timeout_seconds);
     if (!described) return fail_run(described.error().message);
     const PluginInfo plugin = std::move(described.value());
+    if (merging) report.plugin_file = plugin.file;
     report.id = plugin.id;
     report.version = plugin.version;
     report.display_name = plugin.display_name;
@@ -368,6 +403,33 @@ int run_validate(const ValidateOptions& o) {
     run.timeout_seconds = o.timeout_seconds;
     run.reproduce = [&o](const CaseSpec& spec) { return reproduce_command(o, spec.id); };
     bool recording_failed = false;
+    // A stage's results: run here (and written to --out for a merge elsewhere), or read back
+    // from the shards. A merge lacking a case is an error, as is a result for no planned case.
+    std::string obtain_error;
+    std::set<std::string> merged;
+    auto obtain = [&](ValidationStage stage,
+                      const std::vector<CaseSpec>& cases) -> Result<std::vector<CaseResult>> {
+        if (!merging) {
+            run.total += cases.size() * std::max(1u, o.repeat);
+            std::vector<CaseResult> results = run_repeated(run, cases, {o.repeat, o.shuffle_seed});
+            if (o.out)
+                ACETATE_TRY(write_shard_results(*o.out, plugin, o.strictness, o.seed, stage, cases,
+                                                results));
+            return results;
+        }
+        std::vector<CaseResult> results;
+        for (const CaseSpec& c : cases) {
+            auto found = std::find_if(shards.begin(), shards.end(),
+                                      [&](const ShardResult& r) { return r.spec.id == c.id; });
+            if (found == shards.end())
+                return make_error(ErrorCode::InvalidInput,
+                                  fmt::format("merge: no result for case {} in {}", c.id,
+                                              o.merge_from.front().string()));
+            results.push_back(found->result);
+            merged.insert(c.id);
+        }
+        return results;
+    };
     // The failing case that stands for references blessed for another source (set below).
     std::optional<CaseResult> stale_references;
     // Which stages may be recorded: each needs the one before it, for this binary and source.
@@ -375,8 +437,12 @@ int run_validate(const ValidateOptions& o) {
                          const std::vector<CompanionPlugin>& companions) {
         StageRun stage_run;
         stage_run.stage = to_string(stage);
-        run.total += cases.size() * std::max(1u, o.repeat);
-        std::vector<CaseResult> results = run_repeated(run, cases, {o.repeat, o.shuffle_seed});
+        auto obtained = obtain(stage, cases);
+        if (!obtained) {
+            obtain_error = obtained.error().message;
+            return false;
+        }
+        std::vector<CaseResult> results = std::move(obtained.value());
         compare_across_processes(results, o.report_directory);
         if (stage == ValidationStage::AlphaTested && stale_references && !partial)
             results.push_back(*stale_references);
@@ -397,7 +463,8 @@ int run_validate(const ValidateOptions& o) {
                     ? fmt::format(" (acetate-harness review {} --reviewer NAME --notes TEXT)",
                                   o.plugin.string())
                     : "");
-        } else if (auto same = file_sha256(o.plugin);
+        } else if (auto same =
+                       merging ? Result<std::string>(plugin.binary_sha256) : file_sha256(o.plugin);
                    !same || same.value() != plugin.binary_sha256) {
             // The file changed during the run: the cases may have run another binary.
             stage_run.note = "passed, but not recorded: the plugin file changed during the run";
@@ -447,7 +514,10 @@ int run_validate(const ValidateOptions& o) {
         std::vector<CompanionPlugin> companions;
         // A companion is loaded into this process: only one whose sign-offs hold.
         if (registry) registry->verify_sign_offs(SignatureVerifier(o.allowed_signers));
-        if (registry) companions = find_companions(*registry, plugin, o.plugin_paths, notes);
+        if (registry && !merging)
+            companions = find_companions(*registry, plugin, o.plugin_paths, notes);
+        for (const ShardResult& r : shards)  // merging: the companions the shards ran with
+            if (r.stage == ValidationStage::Integrated) companions = r.spec.companions;
         for (const std::string& note : notes) std::printf("note: %s\n", note.c_str());
         std::printf("integration: with %zu other integrated plugin%s%s\n", companions.size(),
                     companions.size() == 1 ? "" : "s", companions.empty() ? " (none yet)" : "");
@@ -461,6 +531,15 @@ int run_validate(const ValidateOptions& o) {
             for (const std::string& line : imported.value()) std::printf("%s\n", line.c_str());
         }
     }
+    if (!obtain_error.empty()) return fail_run(obtain_error);
+    // Every result a merge was given belongs to the plan; those of a stage a single run would
+    // not have reached (its alpha stage failed) are left out, as that run would not have them.
+    for (const ShardResult& r : shards)
+        if (!merged.count(r.spec.id) && (passed || r.stage == ValidationStage::AlphaTested))
+            return fail_run(
+                fmt::format("{}: case {} is not in the plan of this run (strictness "
+                            "{}, seed {})",
+                            r.file.string(), r.spec.id, o.strictness, o.seed));
     report.stage_after = to_string(current_stage(o, plugin));
     report.history = history_of(o, plugin);
     print_summary(report);

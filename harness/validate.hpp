@@ -40,15 +40,25 @@ struct ValidateOptions {
     unsigned repeat = 1;                   // --repeat: runs per case, each in a fresh process
     std::optional<uint64_t> shuffle_seed;  // --shuffle: run every case's runs in random order
     std::filesystem::path registry;
-    std::optional<std::filesystem::path> signoffs;    // committed sign-offs to import
-    std::filesystem::path allowed_signers;            // the keys that verify every sign-off
-    std::filesystem::path references;                 // blessed images: <root>/<plugin id>/
+    std::optional<std::filesystem::path> signoffs;  // committed sign-offs to import
+    std::filesystem::path allowed_signers;          // the keys that verify every sign-off
+    std::filesystem::path references;               // blessed images: <root>/<plugin id>/
+    // Fan-out (shard.hpp, docs/cluster.md): --list-cases prints the plan and runs nothing;
+    // --out DIR writes each selected case's result there (nothing recorded); `merge` judges
+    // and records the results read from merge_from instead of running cases.
+    bool list_cases = false;
+    std::optional<std::filesystem::path> out;
+    std::vector<std::filesystem::path> merge_from;
     std::vector<std::filesystem::path> plugin_paths;  // where integrated companions are found
     std::filesystem::path self;                       // this executable, for the children
 };
 
 // Returns the exit status: 0 when no check failed, 1 when one did or the run could not start.
 int run_validate(const ValidateOptions& options);
+// `validate --list-cases`: the case ids of a run of `options.plugin` at its strictness, seed
+// and stage, one per line (the integration ones as if no companion were integrated: their ids
+// do not depend on them). Returns the exit status.
+int run_list_cases(const ValidateOptions& options);
 
 // What the plugin declares, read in this process (the `describe` child does this).
 Result<PluginInfo> describe_plugin(const std::filesystem::path& file);

@@ -24,6 +24,7 @@
 #include "fuzz.hpp"
 #include "registry.hpp"
 #include "registry_location.hpp"
+#include "shard.hpp"
 #include "validate.hpp"
 
 namespace {
@@ -164,6 +165,12 @@ int main(int argc, char** argv) {
         ->default_val(120);
     v->add_option("--case", validate.only_cases,
                   "Run only this case (repeatable), e.g. to reproduce a failure; records nothing");
+    v->add_flag("--list-cases", validate.list_cases,
+                "Print the run's case ids, one per line, and run nothing (for a cluster: "
+                "docs/cluster.md)");
+    v->add_option("--out", validate.out,
+                  "With --case: write each case's result to DIR/results/ for `merge`; record "
+                  "nothing");
     v->add_option("--plugin-path", validate.plugin_paths,
                   "Where to find the other integrated plugins (then the default search path)");
     v->add_option("--signoffs", signoffs_flag,
@@ -230,6 +237,15 @@ int main(int argc, char** argv) {
     CLI::App* s = app.add_subcommand("status", "Show the registry");
     s->add_flag("--json", status_json, "As JSON");
 
+    std::vector<fs::path> merge_folders;
+    std::optional<fs::path> merge_report;
+    CLI::App* m = app.add_subcommand(
+        "merge", "Judge and record the results `validate --case ID --out DIR` wrote, as one run");
+    m->add_option("folders", merge_folders, "The --out folders of the shards")->required();
+    m->add_option("--report", merge_report, "Report folder (default: the first folder)");
+    m->add_option("--json", validate.json_file, "Also write the JSON report here");
+    m->add_option("--junit", validate.junit_file, "Also write JUnit XML here");
+
     BlessOptions bless;
     std::optional<fs::path> bless_report;
     bless.jobs = validate.jobs;
@@ -256,7 +272,7 @@ int main(int argc, char** argv) {
     c->add_option("--report", case_report)->required();
 
     // Options of the whole command (--registry) may also follow the subcommand.
-    for (CLI::App* sub : {v, r, p, s, w, b}) sub->fallthrough();
+    for (CLI::App* sub : {v, r, p, s, w, b, m}) sub->fallthrough();
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -297,6 +313,37 @@ int main(int argc, char** argv) {
                 return fail(fmt::format("{}: no such plugin file", validate.plugin.string()));
             validate.plugin = fs::absolute(validate.plugin);
             if (shuffle) validate.shuffle_seed = std::random_device{}();
+            if (validate.list_cases) return run_list_cases(validate);
+            if (validate.out) {
+                if (validate.only_cases.empty())
+                    return fail(
+                        "--out: name the cases to run with --case ID (validate "
+                        "--list-cases prints them)");
+                validate.out = fs::absolute(*validate.out);
+                if (!report_flag) validate.report_directory = *validate.out;
+            }
+            return run_validate(validate);
+        }
+        if (m->parsed()) {
+            auto shards = read_shard_results(merge_folders);
+            if (!shards) return fail(shards.error().message);
+            const ShardResult& first = shards->front();
+            validate.plugin = first.plugin.file;
+            validate.strictness = first.strictness;
+            validate.seed = first.seed;
+            validate.up_to = ValidationStage::AlphaTested;
+            for (const ShardResult& r : *shards)
+                if (r.stage == ValidationStage::Integrated)
+                    validate.up_to = ValidationStage::Integrated;
+            for (const fs::path& folder : merge_folders)
+                validate.merge_from.push_back(fs::absolute(folder));
+            validate.report_directory =
+                fs::absolute(merge_report ? *merge_report : merge_folders.front());
+            validate.registry = registry;
+            validate.self = self_path();
+            validate.allowed_signers = allowed_signers_path(allowed_signers_flag);
+            validate.references = references_path(references_flag);
+            validate.signoffs = default_signoffs_path();
             return run_validate(validate);
         }
         if (b->parsed()) {
