@@ -352,7 +352,9 @@ void hangs_at_max(const HarnessRun& run) {
             EXPECT_GE(c["seconds"].get<double>(), kHangTimeoutSeconds - 0.5) << id;
             ++timed_out;
         } else {
-            EXPECT_EQ(c["verdict"], "PASS") << id << ": " << c.dump(2);
+            // A reference case only renders: the battery has no blessed references.
+            EXPECT_EQ(c["verdict"], spec["kind"] == "golden" ? "SKIP" : "PASS")
+                << id << ": " << c.dump(2);
         }
     }
     const json* max = run.find_case("params/max");

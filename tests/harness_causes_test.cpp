@@ -152,7 +152,8 @@ TEST_F(HarnessCauses, ExitInCaseIsACrashWithItsStatusAndLastLogLines) {
         if (builds_floor_one(spec)) {
             EXPECT_EQ(c["verdict"], "CRASH");
         } else if (spec.value("floors", 0u) == 1 && spec.value("prior_loads", 0u) == 0) {
-            EXPECT_EQ(c["verdict"], "PASS");
+            // A reference case only renders: the battery has no blessed references.
+            EXPECT_EQ(c["verdict"], spec["kind"] == "golden" ? "SKIP" : "PASS");
             ++single;
         } else {
             EXPECT_TRUE(c["verdict"] == "PASS" || c["verdict"] == "CRASH");
