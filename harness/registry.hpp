@@ -111,6 +111,9 @@ std::string sign_off_statement(std::string_view id, std::string_view version, Va
 
 class SignatureVerifier;
 
+// Selects the entry of one plugin id and version (for Registry::verify_sign_offs).
+std::function<bool(const RegistryEntry&)> entry_of(std::string_view id, std::string_view version);
+
 class Registry {
   public:
     static constexpr std::string_view kFormat = "acetate-registry/1";
@@ -137,7 +140,10 @@ class Registry {
     // and if it succeeds writes `file` atomically (and `markdown`, when not empty, rendered
     // from the result). If `change` fails nothing is written and its error is returned. Holds
     // the lock only for this call, so `change` must be quick (record results, don't run checks)
-    // and must not fork. Under the lock, temporaries left by a killed writer are removed.
+    // and must not fork a child that lives on without exec'ing: the lock's descriptor is
+    // close-on-exec, so a tool started with posix_spawn (validate's import checks signatures
+    // with ssh-keygen here) does not hold it. Under the lock, temporaries left by a killed
+    // writer are removed.
     static Result<void> update(const std::filesystem::path& file,
                                const std::function<Result<void>(Registry&)>& change,
                                const std::filesystem::path& markdown = {});

@@ -25,6 +25,12 @@ std::string sign_off_statement(std::string_view id, std::string_view version, Va
     return statement.dump() + "\n";
 }
 
+std::function<bool(const RegistryEntry&)> entry_of(std::string_view id, std::string_view version) {
+    return [id = std::string(id), version = std::string(version)](const RegistryEntry& e) {
+        return e.id == id && e.version == version;
+    };
+}
+
 void Registry::verify_sign_offs(const SignatureVerifier& verifier,
                                 const std::function<bool(const RegistryEntry&)>& which) {
     for (RegistryEntry& e : entries_) {

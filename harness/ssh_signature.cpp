@@ -12,6 +12,8 @@
 #include <sstream>
 #include <vector>
 
+#include "child_process.hpp"
+
 extern char** environ;
 
 namespace acetate {
@@ -94,15 +96,6 @@ Result<ToolRun> ssh_keygen(const std::vector<std::string>& args, const fs::path&
     return run;
 }
 
-// ssh-keygen's last non-empty line, for an error message.
-std::string last_line(const std::string& text) {
-    std::string last, line;
-    std::istringstream in(text);
-    while (std::getline(in, line))
-        if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
-    return last;
-}
-
 Result<void> invalid(std::string message) {
     return make_error(ErrorCode::InvalidInput, std::move(message));
 }
@@ -128,7 +121,7 @@ Result<std::string> ssh_sign(const fs::path& key, std::string_view message) {
     if (run->status != 0 || from == std::string::npos || to == std::string::npos)
         return make_error(ErrorCode::Io,
                           fmt::format("{}: cannot sign with this key: ssh-keygen: {}", key.string(),
-                                      last_line(run->err)));
+                                      harness::last_line(run->err)));
     return run->out.substr(from, to + end.size() - from) + "\n";
 }
 
@@ -180,7 +173,7 @@ Result<void> SignatureVerifier::verify(std::string_view principal, std::string_v
         if (principals->err.find("parse") != std::string::npos ||
             principals->err.find("armor") != std::string::npos)
             return invalid(fmt::format("is not an SSH signature (ssh-keygen: {})",
-                                       last_line(principals->err)));
+                                       harness::last_line(principals->err)));
         return invalid(fmt::format("was made by a key that {} does not list",
                                    allowed_signers_.filename().string()));
     }

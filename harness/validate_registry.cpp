@@ -11,12 +11,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::function<bool(const RegistryEntry&)> only(const PluginInfo& p) {
-    return [id = p.id, version = p.version](const RegistryEntry& e) {
-        return e.id == id && e.version == version;
-    };
-}
-
 std::map<std::string, uint64_t> verdict_counts(const std::vector<CaseResult>& results) {
     std::map<std::string, uint64_t> counts;
     for (const CaseResult& r : results) ++counts[to_string(r.verdict)];
@@ -58,7 +52,7 @@ Result<std::vector<std::string>> import_committed(const ValidateOptions& o,
     auto signoffs = Registry::load(*o.signoffs);
     if (!signoffs) return signoffs.error();
     const SignatureVerifier verifier(o.allowed_signers);
-    signoffs->verify_sign_offs(verifier, only(plugin));
+    signoffs->verify_sign_offs(verifier, entry_of(plugin.id, plugin.version));
     std::vector<std::string> lines, imported;
     if (const RegistryEntry* committed = signoffs->find(plugin.id, plugin.version))
         for (const auto& [what, why] : committed->distrusted)
@@ -101,7 +95,7 @@ std::vector<HistoryLine> history_of(const ValidateOptions& o, const PluginInfo& 
 ValidationStage current_stage(const ValidateOptions& o, const PluginInfo& p) {
     auto registry = Registry::load(o.registry);
     if (!registry) return ValidationStage::Unvalidated;
-    registry->verify_sign_offs(SignatureVerifier(o.allowed_signers), only(p));
+    registry->verify_sign_offs(SignatureVerifier(o.allowed_signers), entry_of(p.id, p.version));
     return registry->effective_stage(p.id, p.version, p.binary_sha256, p.source_digest);
 }
 
@@ -114,7 +108,7 @@ std::vector<std::string> import_signoffs(Registry& registry, const Registry& sig
     // review there does not keep the committed one out.
     auto trusted_stage = [&] {
         Registry view = registry;
-        view.verify_sign_offs(verifier, only(p));
+        view.verify_sign_offs(verifier, entry_of(p.id, p.version));
         return view.effective_stage(p.id, p.version, p.binary_sha256, p.source_digest);
     };
     if (committed->review && committed->review->source_digest == p.source_digest &&

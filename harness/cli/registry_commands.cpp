@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "references.hpp"
+#include "registry_fields.hpp"
 #include "registry_location.hpp"
 #include "waivers.hpp"
 
@@ -21,10 +22,6 @@ int fail(const std::string& message) {
     return 1;
 }
 
-bool is_blank(const std::string& s) {
-    return s.find_first_not_of(" \t\r\n") == std::string::npos;
-}
-
 // The registry as a host would trust it: loaded, then the sign-offs of the entries `which`
 // selects verified (every entry when empty).
 Result<Registry> load_trusted(const RegistryCommandContext& c,
@@ -35,12 +32,6 @@ Result<Registry> load_trusted(const RegistryCommandContext& c,
     return loaded;
 }
 
-std::function<bool(const RegistryEntry&)> only(const PluginInfo& p) {
-    return [id = p.id, version = p.version](const RegistryEntry& e) {
-        return e.id == id && e.version == version;
-    };
-}
-
 // Signs `s` as granting `stage` to the plugin, with the maintainer's key, and checks the
 // signature as every reader will: a key the allowed signers do not list for `s.by` is refused
 // here, before anything is recorded.
@@ -48,7 +39,7 @@ Result<void> sign(const RegistryCommandContext& c, const PluginInfo& p, Validati
                   SignOff& s) {
     const char* what = stage == ValidationStage::Reviewed ? "review" : "promotion";
     const std::string plugin = fmt::format("{} {}", p.id, p.version);
-    if (is_blank(s.by))
+    if (registry_fields::is_blank(s.by))
         return make_error(
             ErrorCode::InvalidInput,
             fmt::format("{}: {} refused: the {}'s name is empty (a sign-off says "
@@ -127,7 +118,7 @@ int run_review(const PluginInfo& p, const RegistryCommandContext& c,
         },
         registry_markdown_path(c.registry));
     if (!updated) return fail(updated.error().message);
-    auto trusted = load_trusted(c, only(p));
+    auto trusted = load_trusted(c, entry_of(p.id, p.version));
     const ValidationStage stage =
         trusted ? trusted->effective_stage(p.id, p.version, p.binary_sha256, p.source_digest)
                 : ValidationStage::Reviewed;
@@ -142,7 +133,7 @@ int run_promote(const PluginInfo& p, const RegistryCommandContext& c,
                 const SignOffRequest& request) {
     // The promotion vouches for this file: it must be the binary the evidence is for, and the
     // earlier sign-offs must hold as a host will check them.
-    auto trusted = load_trusted(c, only(p));
+    auto trusted = load_trusted(c, entry_of(p.id, p.version));
     if (!trusted) return fail(trusted.error().message);
     const RegistryEntry* entry = trusted->find(p.id, p.version);
     // Every waiver and any evidence below the default strictness, whatever the outcome: the
@@ -188,7 +179,7 @@ int run_waive(const PluginInfo& p, const RegistryCommandContext& c, const WaiveR
         return fail(fmt::format("waive: \"{}\" is not a check a waiver may name ({})",
                                 request.check, fmt::join(known, ", ")));
     // A waiver is granted on reviewed code: the review must hold as a host checks it.
-    auto trusted = load_trusted(c, only(p));
+    auto trusted = load_trusted(c, entry_of(p.id, p.version));
     if (!trusted) return fail(trusted.error().message);
     Waiver waiver{request.check, request.reason, request.by, "", request.until, ""};
     if (auto ok =
