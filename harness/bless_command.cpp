@@ -28,6 +28,9 @@ int run_bless(const BlessOptions& o) {
     setenv("ACETATE_VALIDATION", "1", 1);
     auto described = describe_in_child(o.self, o.plugin, o.report_directory, o.timeout_seconds);
     if (!described) return fail(described.error().message);
+    auto scenes = find_reference_scenes(o.references, described->id);
+    if (!scenes) return fail(scenes.error().message);
+    described->reference_scenes = std::move(scenes.value());
     const PluginInfo& plugin = described.value();
     if (plugin.source_digest.empty())
         return fail(

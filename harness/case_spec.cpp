@@ -56,6 +56,13 @@ json to_json(const PluginInfo& info) {
                           {"min", p.min_value},
                           {"max", p.max_value},
                           {"components", p.components}});
+    json scenes = json::array();
+    for (const ReferenceScene& r : info.reference_scenes)
+        scenes.push_back({{"name", r.name},
+                          {"file", r.file},
+                          {"digest", r.digest},
+                          {"width", r.width},
+                          {"height", r.height}});
     return {{"file", info.file},
             {"id", info.id},
             {"version", info.version},
@@ -68,7 +75,8 @@ json to_json(const PluginInfo& info) {
             {"presets", info.presets},
             {"abi", info.abi},
             {"source_digest", info.source_digest},
-            {"binary_sha256", info.binary_sha256}};
+            {"binary_sha256", info.binary_sha256},
+            {"reference_scenes", scenes}};
 }
 
 Result<PluginInfo> plugin_info_from_json(const json& j, std::string_view name) {
@@ -90,6 +98,11 @@ Result<PluginInfo> plugin_info_from_json(const json& j, std::string_view name) {
         info.presets = j.at("presets").get<std::vector<std::string>>();
         info.source_digest = j.at("source_digest").get<std::string>();
         info.binary_sha256 = j.at("binary_sha256").get<std::string>();
+        for (const json& r : j.value("reference_scenes", json::array()))
+            info.reference_scenes.push_back(
+                {r.at("name").get<std::string>(), r.at("file").get<std::string>(),
+                 r.at("digest").get<std::string>(), r.at("width").get<uint32_t>(),
+                 r.at("height").get<uint32_t>()});
         return info;
     } catch (const json::exception& e) {
         return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}", name, e.what()));
@@ -121,7 +134,8 @@ json to_json(const CaseSpec& s) {
             {"sweep", s.sweep},
             {"poison", to_string(s.poison)},
             {"inputs", s.inputs},
-            {"reference", s.reference}};
+            {"reference", s.reference},
+            {"scene_file", s.scene_file}};
 }
 
 Result<CaseSpec> case_spec_from_json(const json& j, std::string_view name) {
@@ -159,6 +173,7 @@ Result<CaseSpec> case_spec_from_json(const json& j, std::string_view name) {
         s.time = j.at("time").get<float>();
         s.switches = j.at("switches").get<uint32_t>();
         s.reference = j.value("reference", json());
+        s.scene_file = j.value("scene_file", std::string());
         for (const json& c : j.at("companions"))
             s.companions.push_back({c.at("id").get<std::string>(), c.at("file").get<std::string>(),
                                     c.at("scope").get<std::string>()});

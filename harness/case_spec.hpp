@@ -20,6 +20,15 @@ struct ParamInfo {
     uint32_t components = 1;  // 2 or 3 for a vector: the harness sets every component alike
 };
 
+// A scene of the plugin's own, beside the shared reference scene (references.hpp): a scene file
+// under <references>/<plugin id>/scenes/ that uses only this plugin, rendered as written.
+struct ReferenceScene {
+    std::string name;                // the file's stem: cases "reference/scene-<name>/..."
+    std::string file;                // absolute
+    std::string digest;              // SHA-256 of the scene file and every image it names, in order
+    uint32_t width = 0, height = 0;  // its canvas
+};
+
 struct PluginInfo {
     std::string file;  // absolute
     std::string id, version, display_name;
@@ -31,6 +40,9 @@ struct PluginInfo {
     std::vector<std::string> presets;
     std::string abi;  // "1.0", "1.1": what the plugin was built against
     std::string source_digest, binary_sha256;
+    // Not declared by the plugin: found beside its references (find_reference_scenes), and
+    // carried with it so every process (and a merge) plans the same reference cases.
+    std::vector<ReferenceScene> reference_scenes;
 
     bool is_global() const { return scope == "global"; }
     bool is_expanding() const { return coverage == "expanding"; }
@@ -103,6 +115,9 @@ struct CaseSpec {
     // Golden: the blessed image to compare with and its gates (references.hpp,
     // ReferenceGates); null when none is blessed for this source (the case only renders).
     nlohmann::json reference = nullptr;
+    // Golden: the plugin's own reference scene, rendered as written (its effects' params and
+    // presets), the composite read back; empty: the shared reference scene.
+    std::string scene_file;
 };
 nlohmann::json to_json(const CaseSpec& spec);
 Result<CaseSpec> case_spec_from_json(const nlohmann::json& json, std::string_view name);

@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 #include "case_kinds.hpp"
 #include "references.hpp"
 #include "scene/image_compare.hpp"
+#include "scene/scene.hpp"
 
 namespace acetate::harness {
 namespace {
@@ -41,15 +43,39 @@ ReferenceGates gates_of(const json& j) {
     return g;
 }
 
+// What the case compares: on the shared scene, what the plugin produced (its floor's target, or
+// the composite it ran on); on one of the plugin's own scenes, the picture as a user sees it
+// (the composite over the canvas, the scene's active floor on top). Null when the load failed
+// (recorded).
+Result<std::optional<ImageRGBA>> render_reference(const CaseContext& c, Session& s, CaseWriter& w) {
+    if (c.spec.scene_file.empty()) {
+        auto comp = load_layout(c, s, w, case_layout(c), "golden");
+        if (!comp) return comp.error();
+        if (!*comp) return std::optional<ImageRGBA>();
+        const uint32_t floor = c.plugin.is_global() ? c.spec.floors - 1 : plugin_floors(c).front();
+        auto output = plugin_output(**comp, c.plugin.is_global(), floor, c.spec.time);
+        if (!output) return output.error();
+        return std::optional<ImageRGBA>(std::move(output.value()));
+    }
+    auto scene = parse_scene_file(c.spec.scene_file);
+    if (!scene) return scene.error();
+    auto comp = load_scene(c, s, w, scene.value());
+    if (!comp) return comp.error();
+    if (!*comp) return std::optional<ImageRGBA>();
+    (*comp)->set_view(OutputView::Normal);
+    ACETATE_TRY((*comp)->render(scene->active_floor, c.spec.time));
+    auto output = (*comp)->read_output();
+    if (!output) return output.error();
+    return std::optional<ImageRGBA>(std::move(output.value()));
+}
+
 }  // namespace
 
 Result<void> run_golden(const CaseContext& c, Session& s, CaseWriter& w) {
-    auto comp = load_layout(c, s, w, case_layout(c), "golden");
-    if (!comp) return comp.error();
-    if (!*comp) return {};  // the load failure is recorded
-    const uint32_t floor = c.plugin.is_global() ? c.spec.floors - 1 : plugin_floors(c).front();
-    auto output = plugin_output(**comp, c.plugin.is_global(), floor, c.spec.time);
-    if (!output) return output.error();
+    auto rendered = render_reference(c, s, w);
+    if (!rendered) return rendered.error();
+    if (!rendered.value()) return {};  // the load failure is recorded
+    const std::optional<ImageRGBA>& output = rendered.value();
     ACETATE_TRY(save_image(golden_output_file(c.case_directory), *output));
     w.case_picture("output.golden", *output);
 

@@ -4,14 +4,17 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "case_batch.hpp"
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
+#include "core/sha256.hpp"
 #include "core/strict_json.hpp"
 #include "json_fields.hpp"
 #include "registry.hpp"
+#include "scene/scene.hpp"
 #include "validate.hpp"
 
 namespace acetate::harness {
@@ -49,7 +52,8 @@ std::string text(const json& j, const std::string& path, std::string_view key) {
 ReferenceSet read_manifest(const json& j, const fs::path& directory) {
     expect_object(
         j, "",
-        {"format", "plugin", "version", "source_digest", "blessed_by", "at", "gates", "images"});
+        {"format", "plugin", "version", "source_digest", "blessed_by", "at", "gates", "images"},
+        {"scenes"});
     if (text(j, "", "format") != kReferencesFormat)
         fail("format", fmt::format("is not \"{}\"", kReferencesFormat));
     ReferenceSet set;
@@ -76,6 +80,12 @@ ReferenceSet read_manifest(const json& j, const fs::path& directory) {
             fail(path, fmt::format("\"{}\" is not a file name in {}", name, directory.string()));
         set.images[id] = name;
     }
+    const json scenes = j.value("scenes", json::object());
+    if (!scenes.is_object()) fail("scenes", "must be an object of scene name: digest");
+    for (const auto& [name, digest] : scenes.items()) {
+        if (!digest.is_string()) fail(field("scenes", name), "must be a SHA-256 digest");
+        set.scenes[name] = digest.get<std::string>();
+    }
     return set;
 }
 
@@ -93,7 +103,8 @@ ordered_json write_manifest(const ReferenceSet& set) {
                           {"fail", set.gates.fail},
                           {"fail_percent", set.gates.fail_percent},
                           {"hard_fail", set.gates.hard_fail}}},
-                        {"images", images}};
+                        {"images", images},
+                        {"scenes", set.scenes}};
 }
 
 CaseResult failing_case(const std::string& id, const std::string& description,
@@ -164,7 +175,98 @@ std::vector<CaseSpec> golden_cases(const PluginInfo& plugin) {
                     {"time", fmt::format("{}", time)}};
         cases.push_back(std::move(s));
     }
+    for (const ReferenceScene& scene : plugin.reference_scenes)
+        for (const float time : {0.0f, kLaterTime}) {
+            CaseSpec s;
+            s.kind = CaseKind::Golden;
+            s.id = fmt::format("reference/scene-{}/{}", scene.name, time_label(time));
+            s.description = fmt::format(
+                "the plugin's own reference scene {} as written, t = {} s, against "
+                "the blessed image",
+                fs::path(scene.file).filename().string(), time);
+            s.seed = case_seed(kReferenceSeed, s.id);  // unused: the scene is fixed
+            s.width = scene.width;
+            s.height = scene.height;
+            s.time = time;
+            s.poison = Poison::None;
+            s.scene_file = scene.file;
+            s.inputs = {{"reference", "scene " + scene.name}, {"time", fmt::format("{}", time)}};
+            cases.push_back(std::move(s));
+        }
     return cases;
+}
+
+namespace {
+
+// One digest for a scene as it renders: its file and each image it names, in the scene's order.
+Result<std::string> scene_digest(const SceneDesc& scene) {
+    std::vector<fs::path> files = {scene.file};
+    for (const FloorDesc& floor : scene.floors)
+        for (const TileDesc& tile : floor.tiles) {
+            files.push_back(tile.image);
+            for (const auto& [kind, mask] : tile.masks) files.push_back(mask);
+        }
+    std::string digests;
+    for (const fs::path& file : files) {
+        auto sha = file_sha256(file);
+        if (!sha) return sha.error();
+        digests += sha.value() + "\n";
+    }
+    return sha256_hex(digests);
+}
+
+bool is_scene_name(const std::string& name) {
+    return !name.empty() && std::isalnum(static_cast<unsigned char>(name[0])) &&
+           std::all_of(name.begin(), name.end(), [](unsigned char c) {
+               return std::islower(c) || std::isdigit(c) || c == '-' || c == '_';
+           });
+}
+
+}  // namespace
+
+Result<std::vector<ReferenceScene>> find_reference_scenes(const fs::path& root,
+                                                          const std::string& plugin_id) {
+    const fs::path folder = root / plugin_id / "scenes";
+    std::vector<ReferenceScene> scenes;
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) return scenes;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(folder, ec))
+        if (entry.path().extension() == ".json") files.push_back(entry.path());
+    if (ec)
+        return make_error(ErrorCode::Io,
+                          fmt::format("{}: cannot list: {}", folder.string(), ec.message()));
+    std::sort(files.begin(), files.end());
+    for (const fs::path& file : files) {
+        const std::string name = file.stem().string();
+        if (!is_scene_name(name))
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("{}: a reference scene's name is lower-case letters, "
+                                          "digits, '-' and '_' (it names its cases)",
+                                          file.string()));
+        auto scene = parse_scene_file(fs::absolute(file));
+        if (!scene) return scene.error();
+        std::vector<const EffectRef*> effects;
+        for (const FloorDesc& floor : scene->floors)
+            for (const EffectRef& e : floor.effects) effects.push_back(&e);
+        for (const EffectRef& e : scene->global_effects) effects.push_back(&e);
+        if (effects.empty())
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("{}: the scene uses no effect; a reference scene of {} "
+                                          "uses it",
+                                          file.string(), plugin_id));
+        for (const EffectRef* e : effects)
+            if (e->plugin != plugin_id)
+                return make_error(ErrorCode::InvalidInput,
+                                  fmt::format("{}: {}.plugin: \"{}\" is not {}; a plugin's "
+                                              "reference scene uses it alone",
+                                              file.string(), e->where, e->plugin, plugin_id));
+        auto digest = scene_digest(scene.value());
+        if (!digest) return digest.error();
+        scenes.push_back(
+            {name, fs::absolute(file).string(), digest.value(), scene->width, scene->height});
+    }
+    return scenes;
 }
 
 Result<std::optional<ReferenceSet>> load_references(const fs::path& root,
@@ -209,6 +311,16 @@ std::optional<CaseResult> attach_references(std::vector<CaseSpec>& cases,
                         "is {}: {}",
                         plugin.id, set->directory.string(), set->source_digest.substr(0, 12),
                         plugin.source_digest.substr(0, 12), bless));
+    for (const ReferenceScene& scene : plugin.reference_scenes) {
+        auto blessed = set->scenes.find(scene.name);
+        if (blessed == set->scenes.end() || blessed->second != scene.digest)
+            return failing_case(
+                "reference/current", "the blessed references are for the plugin's own scenes",
+                fmt::format(
+                    "{}: {} {} since the references were blessed: {}", plugin.id, scene.file,
+                    blessed == set->scenes.end() ? "was added" : "or an image it names changed",
+                    bless));
+    }
     std::vector<std::string> missing;
     for (CaseSpec& c : cases) {
         if (c.kind != CaseKind::Golden) continue;
@@ -245,6 +357,8 @@ Result<ReferenceSet> bless_references(const fs::path& root, const PluginInfo& pl
     set.at = utc_now_iso8601();
     if (auto earlier = load_references(root, plugin.id); earlier && earlier.value())
         set.gates = earlier.value()->gates;  // a maintainer's tuned gates stay
+    for (const ReferenceScene& scene : plugin.reference_scenes)
+        set.scenes[scene.name] = scene.digest;
     std::error_code ec;
     fs::create_directories(set.directory, ec);
     if (ec)

@@ -40,14 +40,25 @@ struct ReferenceSet {
     std::string blessed_by, at;  // who blessed them, when (ISO-8601 UTC)
     ReferenceGates gates;
     std::map<std::string, std::string> images;  // case id -> file name in `directory`
+    // The plugin's own scenes the images were rendered from: name -> digest (ReferenceScene);
+    // a scene edited (or an image it names) since makes the references stale.
+    std::map<std::string, std::string> scenes;
 };
 
 inline constexpr const char* kReferencesFormat = "acetate-references/1";
 
 // The reference cases (kind Golden): the plugin's defaults at t = 0 and t = 2.5 s, and each
-// declared preset at t = 2.5 s, all on one fixed 128x80 scene. Their seed does not depend on
-// the run's, so the same cases are rendered at any --seed and strictness.
+// declared preset at t = 2.5 s, all on one fixed 128x80 scene shared by every plugin; then
+// each of the plugin's own scenes (plugin.reference_scenes) at t = 0 and t = 2.5 s, as
+// written. Their seed does not depend on the run's, so the same cases are rendered at any
+// --seed and strictness.
 std::vector<CaseSpec> golden_cases(const PluginInfo& plugin);
+
+// The plugin's own reference scenes: <root>/<plugin id>/scenes/*.json, by name. Each must be a
+// valid scene that uses this plugin and no other (the harness loads only the plugin under
+// test); otherwise InvalidInput naming the scene file and the field. None: an empty list.
+Result<std::vector<ReferenceScene>> find_reference_scenes(const std::filesystem::path& root,
+                                                          const std::string& plugin_id);
 
 // <root>/<plugin id>/manifest.json; nullopt when that folder holds none. InvalidInput naming
 // the file and the field when it is malformed; an image it names that is missing is an error

@@ -290,6 +290,12 @@ int run_list_cases(const ValidateOptions& o) {
         std::fprintf(stderr, "acetate-harness: %s\n", described.error().message.c_str());
         return 1;
     }
+    auto scenes = find_reference_scenes(o.references, described->id);
+    if (!scenes) {
+        std::fprintf(stderr, "acetate-harness: %s\n", scenes.error().message.c_str());
+        return 1;
+    }
+    described->reference_scenes = std::move(scenes.value());
     for (const CaseSpec& c : plan_cases(*described, o.strictness, o.seed, true,
                                         o.up_to >= ValidationStage::Integrated, {}))
         std::printf("%s\n", c.id.c_str());
@@ -347,6 +353,11 @@ int run_validate(const ValidateOptions& o) {
         merging ? Result<PluginInfo>(shards.front().plugin)
                 : describe_in_child(o.self, o.plugin, o.report_directory, o.timeout_seconds);
     if (!described) return fail_run(described.error().message);
+    if (!merging) {  // a merge plans with the scenes its shards ran
+        auto scenes = find_reference_scenes(o.references, described->id);
+        if (!scenes) return fail_run(scenes.error().message);
+        described->reference_scenes = std::move(scenes.value());
+    }
     const PluginInfo plugin = std::move(described.value());
     if (merging) report.plugin_file = plugin.file;
     report.id = plugin.id;

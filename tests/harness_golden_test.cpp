@@ -208,3 +208,94 @@ TEST_F(HarnessGolden, UnusableReferencesAreOneLineNamingTheFile) {
 
 }  // namespace
 }  // namespace acetate
+
+namespace acetate {
+namespace {
+
+// A plugin's own reference scene (references/<id>/scenes/NAME.json): blessed and judged beside
+// the shared scene, rendered as written; editing an image it names makes the references stale
+// in one line; a scene that uses another plugin is refused in one line naming the field.
+TEST_F(HarnessGolden, APluginsOwnSceneIsBlessedJudgedAndStaleOnceEdited) {
+    const std::string id = "test.harness.well_behaved";
+    const fs::path scenes = references_ / id / "scenes";
+    fs::create_directories(scenes);
+    ImageRGBA tile(48, 32);
+    for (uint32_t y = 0; y < tile.height; ++y)
+        for (uint32_t x = 0; x < tile.width; ++x) {
+            float* p = &tile.pixels[(size_t(y) * tile.width + x) * 4];
+            const float a = x < 40 ? 1.0f : 0.5f;  // part of it half covered
+            p[0] = a * float(x) / 48.0f;
+            p[1] = a * float(y) / 32.0f;
+            p[2] = a * 0.25f;
+            p[3] = a;
+        }
+    ASSERT_TRUE(save_image(scenes / "pond.exr", tile));
+    const json scene = {
+        {"format", "acetate-scene/1"},
+        {"canvas", {{"width", 64}, {"height", 40}, {"background", {0.1, 0.1, 0.1, 1.0}}}},
+        {"floors",
+         {{{"name", "pond"},
+           {"tiles", {{{"image", "pond.exr"}, {"rect", {8, 4, 48, 32}}}}},
+           {"effects", {{{"plugin", id}}}}}}}};
+    test::write_text(scenes / "pond.json", scene.dump(2));
+
+    test::CommandResult run =
+        harness("bless " + shell_quote(plugin("well_behaved").string()) +
+                " --by rita@example.org --report " + shell_quote((dir_ / "bless").string()));
+    ASSERT_EQ(run.code, 0) << run.describe();
+    EXPECT_TRUE(contains(run.out, "6 reference images blessed")) << run.out;
+    const json m = read_manifest(id);
+    ASSERT_TRUE(m["images"].contains("reference/scene-pond/t0")) << m.dump(2);
+    ASSERT_TRUE(m["images"].contains("reference/scene-pond/t2.5")) << m.dump(2);
+    ASSERT_TRUE(m["scenes"].contains("pond")) << m.dump(2);
+    auto image =
+        load_image(references_ / id / m["images"]["reference/scene-pond/t0"].get<std::string>(),
+                   ImageRole::Colour);
+    ASSERT_TRUE(image) << image.error().message;
+    EXPECT_EQ(image->width, 64u);  // the scene's canvas, not the shared scene's
+    EXPECT_EQ(image->height, 40u);
+
+    // Judged as blessed: both scene cases compare their image and pass.
+    run = validate("well_behaved");
+    EXPECT_EQ(run.code, 0) << run.describe();
+    size_t scene_cases = 0;
+    const json judged = report("well_behaved");  // named: a loop over a temporary's member dangles
+    for (const json& c : judged["cases"])
+        if (c["id"].get<std::string>().rfind("reference/scene-pond/", 0) == 0) {
+            ++scene_cases;
+            EXPECT_EQ(c["verdict"], "PASS") << c.dump(2);
+        }
+    EXPECT_EQ(scene_cases, 2u) << run.out;
+
+    // An image the scene names is edited: the references are stale, in one line naming it.
+    tile.pixels[0] = 0.75f;
+    ASSERT_TRUE(save_image(scenes / "pond.exr", tile));
+    run = validate("well_behaved");
+    EXPECT_EQ(run.code, 1) << run.describe();
+    bool stale = false;
+    const json stale_report = report("well_behaved");
+    for (const json& c : stale_report["cases"])
+        if (c["id"] == "reference/current") {
+            const std::string message = c["message"].get<std::string>();
+            stale = contains(message, (scenes / "pond.json").string()) &&
+                    contains(message, "an image it names changed") &&
+                    contains(message, "acetate-harness bless");
+            EXPECT_TRUE(stale) << message;
+        }
+    EXPECT_TRUE(stale);
+
+    // A reference scene that uses another plugin: refused before any case, naming the field.
+    json other = scene;
+    other["floors"][0]["effects"][0]["plugin"] = "acetate.water";
+    test::write_text(scenes / "pond.json", other.dump(2));
+    run = validate("well_behaved");
+    EXPECT_EQ(run.code, 1) << run.describe();
+    const auto lines = test::nonempty_lines(run.err);
+    ASSERT_EQ(lines.size(), 1u) << run.describe();
+    EXPECT_TRUE(contains(lines[0], (scenes / "pond.json").string() +
+                                       ": floors[0].effects[0].plugin: \"acetate.water\" is not"))
+        << lines[0];
+}
+
+}  // namespace
+}  // namespace acetate
