@@ -7,8 +7,8 @@
 #include <cstring>
 
 #include "case_runner.hpp"
-#include "child_process.hpp"
 #include "core/atomic_file.hpp"
+#include "core/child_process.hpp"
 #include "core/input_file.hpp"
 #include "core/strict_json.hpp"
 #include "validate.hpp"

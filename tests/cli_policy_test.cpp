@@ -15,10 +15,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "acetate/host/host.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "registry.hpp"
 #include "registry_location.hpp"
@@ -461,6 +463,75 @@ TEST_F(HostPolicy, TwoPinnedPluginsStayApart) {
     EXPECT_EQ(lighting.value()->descriptor.id, "acetate.lighting");
     EXPECT_EQ(bloom.value()->descriptor.id, "acetate.bloom");
     EXPECT_NE(lighting.value()->api, bloom.value()->api);
+}
+
+// The embedding API (acetate/host/host.hpp) carries the same policy as the CLI: the same
+// refusal line for an unvalidated plugin (only the advice on loading anyway differs), the
+// plugin loaded once VALIDATED, and the scene rendered, read back and written through it.
+TEST_F(HostPolicy, TheEmbeddingApiRefusesAndLoadsAsTheCliDoes) {
+    host::HostOptions options;
+    options.validation = true;
+    options.pipeline_cache = false;
+    options.plugin_directories = {plugins_};
+    options.allowed_signers = test::test_signer().allowed_signers;
+    options.registry = dir_ / "no-such-registry.json";
+    {
+        const CliRun cli = render("scene.json -o out.png --registry " +
+                                  test::shell_quote(options.registry->string()));
+        ASSERT_EQ(cli.code, 1) << cli.describe();
+        const std::string cli_line = test::nonempty_lines(cli.err).at(0);
+        const std::string advice = "; run acetate-harness validate";
+        ASSERT_NE(cli_line.find(advice), std::string::npos) << cli_line;
+
+        auto host = host::Host::create(options);
+        ASSERT_TRUE(host) << host.error().message;
+        auto scene = (*host)->load_scene_file(dir_ / "scene.json");
+        ASSERT_FALSE(scene);
+        const std::string& line = scene.error().message;
+        // The CLI's line is "acetate: " and the scene's path as given on its command line.
+        const std::string refusal = cli_line.substr(0, cli_line.find(advice))
+                                        .substr(std::string("acetate: scene.json").size());
+        EXPECT_EQ(line.substr(0, line.find(advice)), (dir_ / "scene.json").string() + refusal)
+            << line << "\n"
+            << cli_line;
+        EXPECT_TRUE(contains(line, "or set HostOptions::allow_unvalidated")) << line;
+        EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+    }
+
+    options.registry = dir_ / "registry.json";
+    write_validated_registry(*options.registry);
+    if (HasFatalFailure()) return;
+    auto host = host::Host::create(options);
+    ASSERT_TRUE(host) << host.error().message;
+    auto scene = (*host)->load_scene_file(dir_ / "scene.json");
+    ASSERT_TRUE(scene) << scene.error().message;
+    EXPECT_EQ((*scene)->floor_count(), 1u);
+    EXPECT_EQ((*scene)->floor_name(0), "ground");
+    EXPECT_FALSE((*scene)->read_frame()) << "nothing rendered yet";
+    EXPECT_FALSE((*scene)->set_active_floor(1));
+    EXPECT_FALSE((*scene)->set_time(std::numeric_limits<double>::infinity()));
+    ASSERT_TRUE((*scene)->set_time(2.5));
+    auto stats = (*scene)->render();
+    ASSERT_TRUE(stats) << stats.error().message;
+    EXPECT_EQ(stats->time, 2.5);
+    EXPECT_EQ(stats->targets_allocated + stats->shaders_compiled + stats->pipelines_created, 0u);
+    auto frame = (*scene)->read_frame();
+    ASSERT_TRUE(frame) << frame.error().message;
+    ASSERT_EQ(frame->width, 16u);
+    ASSERT_EQ(frame->rgba.size(), size_t(16) * 16 * 4);
+    // Lit by the plugin: the tile's 0.4 grey is changed where the light falls.
+    EXPECT_NE(frame->rgba[(8 * 16 + 8) * 4], 0.4f);
+    ASSERT_TRUE((*scene)->write_frame(dir_ / "api.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "api.png"));
+    EXPECT_FALSE((*scene)->write_frame(dir_ / "api.tiff"));
+
+    // A description in memory, its images found from the folder given.
+    auto from_text = (*host)->load_scene_text(scene_text(true), dir_, "inline.json");
+    ASSERT_TRUE(from_text) << from_text.error().message;
+    auto bad = (*host)->load_scene_text("{\"format\": \"acetate-scene/1\"}", dir_, "inline.json");
+    ASSERT_FALSE(bad);
+    EXPECT_TRUE(contains(bad.error().message, (dir_ / "inline.json").string()))
+        << bad.error().message;
 }
 
 }  // namespace

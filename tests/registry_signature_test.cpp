@@ -1,4 +1,4 @@
-// Sign-offs are SSH signatures (harness/ssh_signature.hpp, docs/registry.md "Signatures"):
+// Sign-offs are SSH signatures (registry/ssh_signature.hpp, docs/registry.md "Signatures"):
 // a registry reader trusts a review or a promotion only when its signature verifies against
 // the allowed signers, for the maintainer it names and the exact statement it signs. Forged,
 // unlisted, altered and revoked sign-offs are dropped with one line naming the entry.

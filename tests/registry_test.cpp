@@ -1,4 +1,4 @@
-// The validation registry (harness/registry.hpp): stages advance in order and are never
+// The validation registry (registry/registry.hpp): stages advance in order and are never
 // skipped; a rebuilt binary loses its automated stages and a source change its sign-offs; the
 // host's check pins the binary; the file round-trips, names the field when malformed, and
 // survives concurrent writers and a writer killed mid-write. No GPU needed.

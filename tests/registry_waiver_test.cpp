@@ -1,4 +1,4 @@
-// Waivers and strictness in the registry (harness/registry.hpp, docs/registry.md "Waivers"):
+// Waivers and strictness in the registry (registry/registry.hpp, docs/registry.md "Waivers"):
 // a waiver is granted on reviewed code for one check until a day, is bound to the source,
 // round-trips through the file, blocks promotion once expired; evidence below the default
 // strictness is promoted only under a waiver of "strictness". No GPU needed.

@@ -11,6 +11,9 @@
 #    ~/.local/share/acetate), never the build tree's, and import the installed sign-offs:
 #    installed acetate-harness validates the installed lighting plugin into that registry, and
 #    installed acetate then loads it (and refuses it with an empty registry).
+#    examples/embedding-host, built against the installed package (Acetate::host), refuses the
+#    plugin with the same line as acetate, renders with it once validated, and renders the
+#    harbour floor by floor (--allow-unvalidated), no frame allocating or compiling.
 # 2. Copies examples/out-of-tree-plugin to <WORK_DIR>/src, configures it in <WORK_DIR>/build
 #    with CMAKE_PREFIX_PATH=<WORK_DIR>/prefix (and checks find_package found that prefix), and
 #    builds it.
@@ -142,6 +145,36 @@ if(rc EQUAL 0 OR NOT out MATCHES "registry ${xdg_registry}")
                       "plugin naming the user's registry (exit ${rc}):\n${out}")
 endif()
 message(STATUS "ok: installed acetate refuses an unvalidated plugin, naming ${xdg_registry}")
+# The refusal without its program's prefix and its last clause (how to load anyway, which each
+# program words for its own user): the embedding host must print the same.
+string(REGEX MATCH "acetate: ([^\n]*is not VALIDATED[^\n]*); run acetate-harness validate" cli_refusal "${out}")
+set(cli_refusal "${CMAKE_MATCH_1}")
+
+# ---- 1c. A program embedding the host, built against the installed package ----
+set(embed_src "${WORK_DIR}/src/embedding-host")
+set(embed_build "${WORK_DIR}/embedding-build")
+file(REMOVE_RECURSE "${embed_build}")
+file(COPY "${SOURCE_DIR}/examples/embedding-host" DESTINATION "${WORK_DIR}/src")
+set(embed_configure -S "${embed_src}" -B "${embed_build}" "-DCMAKE_PREFIX_PATH=${prefix}")
+if(GENERATOR)
+  list(APPEND embed_configure -G "${GENERATOR}")
+endif()
+if(CXX_COMPILER)
+  list(APPEND embed_configure "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}")
+endif()
+run_step("configure the embedding host" "${CMAKE_COMMAND}" ${embed_configure})
+run_step("build the embedding host" "${CMAKE_COMMAND}" --build "${embed_build}")
+set(embedding_host "${embed_build}/embedding-host")
+require_file("${embedding_host}")
+execute_process(COMMAND ${render_env} "${embedding_host}" "${WORK_DIR}/lit.json"
+  "${WORK_DIR}/embedded-refused" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${err}" "embedding-host: ${cli_refusal}; run acetate-harness validate" same)
+if(rc EQUAL 0 OR cli_refusal STREQUAL "" OR same EQUAL -1 OR EXISTS "${WORK_DIR}/embedded-refused/floor0.png")
+  message(FATAL_ERROR "sdk_install_test: the embedding host did not refuse the unvalidated "
+                      "plugin as acetate does (exit ${rc}); acetate said:\n  ${cli_refusal}\n"
+                      "the embedding host said:\n${err}")
+endif()
+message(STATUS "ok: the embedding host refuses the unvalidated plugin with acetate's line")
 run_step("installed acetate-harness validate lighting.so (installed sign-offs)"
   ${render_env} "${prefix}/bin/acetate-harness" validate "${prefix}/${LIBDIR}/acetate/plugins/lighting.so"
   --report "${WORK_DIR}/lighting-report")
@@ -155,6 +188,23 @@ endif()
 run_step("installed acetate renders with the plugin it validated" ${render_env}
   "${prefix}/bin/acetate" render "${WORK_DIR}/lit.json" -o "${WORK_DIR}/lit.png")
 require_file("${WORK_DIR}/lit.png")
+run_step("the embedding host renders with the plugin validated" ${render_env}
+  "${embedding_host}" "${WORK_DIR}/lit.json" "${WORK_DIR}/embedded-lit")
+require_file("${WORK_DIR}/embedded-lit/floor0.png")
+# The harbour with plugins not validated here: loaded with a warning each, every floor rendered
+# in turn, and no frame after the load allocates or compiles anything.
+run_step("the embedding host renders the harbour floor by floor (--allow-unvalidated)"
+  ${render_env} "${embedding_host}" "${art}/scene.json" "${WORK_DIR}/embedded-harbour"
+  --time 2.5 --allow-unvalidated)
+foreach(floor 0 1 2 3)
+  require_file("${WORK_DIR}/embedded-harbour/floor${floor}.png")
+  if(NOT step_output MATCHES "floor ${floor} \\([a-z]+\\): [0-9.]+ ms, [0-9]+ passes, 0 allocations, 0 compiles")
+    message(FATAL_ERROR "sdk_install_test: the embedding host's frame of floor ${floor}:\n${step_output}")
+  endif()
+endforeach()
+if(NOT step_output MATCHES "warning: loading unvalidated plugin acetate.water")
+  message(FATAL_ERROR "sdk_install_test: no warning for the unvalidated plugins:\n${step_output}")
+endif()
 
 # ---- 2. Build the out-of-tree example against the installed prefix ----
 file(COPY "${SOURCE_DIR}/examples/out-of-tree-plugin" DESTINATION "${WORK_DIR}/src")

@@ -8,17 +8,17 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "cli/output_paths.hpp"
 #include "core/atomic_file.hpp"
+#include "load_policy.hpp"
 #include "plugins/plugin_loader.hpp"
-#include "registry.hpp"
 #include "registry_location.hpp"
 #include "render/compositor.hpp"
 #include "render/renderer.hpp"
 #include "scene/image_io.hpp"
 #include "scene/scene.hpp"
-#include "ssh_signature.hpp"
 #include "vulkan/pipeline_cache_file.hpp"
 #include "vulkan/vulkan_context.hpp"
 
@@ -45,46 +45,6 @@ bool names_a_plugin(const SceneDesc& scene) {
     return !scene.global_effects.empty() ||
            std::any_of(scene.floors.begin(), scene.floors.end(),
                        [](const FloorDesc& f) { return !f.effects.empty(); });
-}
-
-// The host load policy (docs/registry.md, "Host policy"), as the plugin loader's admission
-// hook: it runs before a file is opened, so a refused library's code never runs in this
-// process. A file is admitted when the registry has its id VALIDATED for exactly its SHA-256
-// (for a file loaded by path, with no id yet, any plugin VALIDATED for that SHA-256). Any
-// other file is refused with one line naming it, the stage the registry holds for it and
-// why; with --allow-unvalidated it is admitted with one warning line instead.
-// `registry_name` is how the messages name it: "registry FILE". Only sign-offs whose signatures
-// `verifier` accepts count, and only the entries for this binary are checked (each check runs
-// ssh-keygen).
-PluginLoader::Admission load_policy(std::shared_ptr<const Registry> registry,
-                                    std::string registry_name, SignatureVerifier verifier,
-                                    bool allow_unvalidated) {
-    return [registry = std::move(registry), registry_name = std::move(registry_name),
-            verifier = std::move(verifier),
-            allow_unvalidated](const std::string& id, const std::filesystem::path& file,
-                               const std::filesystem::path& contents) -> Result<void> {
-        auto sha = file_sha256(contents);  // the open file that will be loaded, not the path
-        if (!sha) return sha.error();
-        Registry trusted = *registry;
-        trusted.verify_sign_offs(verifier, [&](const RegistryEntry& e) {
-            return e.binary_sha256 == sha.value() && (id.empty() || e.id == id);
-        });
-        if (trusted.binary_stage(id, sha.value()) == ValidationStage::Validated) return {};
-        const std::string plugin =
-            id.empty() ? file.string() : fmt::format("{} ({})", id, file.string());
-        const std::string why =
-            fmt::format("not VALIDATED for this binary (SHA-256 {}): {}: {}", sha->substr(0, 12),
-                        registry_name, trusted.explain(id, *sha));
-        if (allow_unvalidated) {
-            std::fprintf(stderr, "acetate: warning: loading unvalidated plugin %s: %s\n",
-                         plugin.c_str(), why.c_str());
-            return {};
-        }
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{} is {}; run acetate-harness validate {}, or pass "
-                                      "--allow-unvalidated",
-                                      plugin, why, file.string()));
-    };
 }
 
 // The active floors a scene is rendered from, in order: --floors, --floors all, --floor, or the
@@ -187,16 +147,18 @@ int run_render(const RenderCommand& command) {
     }
     // The registry is read once, and only when some scene names a plugin: a scene without
     // effects involves no policy. A malformed registry is bad input like a malformed scene.
-    std::shared_ptr<const Registry> registry;
-    std::string registry_name;  // how the policy's messages name it
+    std::optional<LoadPolicy> policy;
     if (std::any_of(scenes.begin(), scenes.end(), names_a_plugin)) {
-        const std::filesystem::path file = registry_path(command.registry);
-        auto loaded = Registry::load(file);  // a missing file: nothing is validated
-        if (!loaded) return fail(loaded.error());
-        registry = std::make_shared<const Registry>(std::move(loaded).value());
-        std::error_code ec;
-        registry_name = fmt::format("registry {}{}", file.string(),
-                                    std::filesystem::exists(file, ec) ? "" : " (no such file)");
+        LoadPolicyOptions policy_options;
+        policy_options.registry = command.registry;
+        policy_options.allowed_signers = command.allowed_signers;
+        policy_options.allow_unvalidated = command.allow_unvalidated;
+        policy_options.warn = [](const std::string& line) {
+            std::fprintf(stderr, "acetate: %s\n", line.c_str());
+        };
+        auto opened = LoadPolicy::open(std::move(policy_options));
+        if (!opened) return fail(opened.error());
+        policy = std::move(opened.value());
     }
     if (auto spared =
             check_outputs_spare_inputs(run_outputs(command, scenes), run_inputs(command, scenes));
@@ -212,11 +174,12 @@ int run_render(const RenderCommand& command) {
         renderer_options.pipeline_cache_file = default_pipeline_cache_path();
     auto renderer = Renderer::create(*context.value(), renderer_options);
     if (!renderer) return fail(renderer.error());
-    if (registry)
+    if (policy)
         (*renderer)->plugins().set_admission(
-            load_policy(registry, registry_name,
-                        SignatureVerifier(allowed_signers_path(command.allowed_signers)),
-                        command.allow_unvalidated));
+            [policy = std::move(*policy)](const std::string& id, const std::filesystem::path& file,
+                                          const std::filesystem::path& contents) {
+                return policy.admit(id, file, contents);
+            });
 
     nlohmann::json scene_reports = nlohmann::json::array();
     const bool several_scenes = scenes.size() > 1;

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
 #include <cerrno>
@@ -81,6 +82,13 @@ std::vector<std::filesystem::path> PluginLoader::default_directories(
         out.push_back(bin.parent_path() / ACETATE_INSTALL_LIBDIR / "acetate" /
                       "plugins");                      // installed
         out.push_back(bin.parent_path() / "plugins");  // build tree: build/host/acetate
+    }
+    // A program embedding the installed host library (PREFIX/<libdir>/libacetate-host.so)
+    // from anywhere: the plugins installed beside that library.
+    const std::filesystem::path library = boost::dll::this_line_location(ec).string();
+    if (!ec) {
+        const auto installed = library.parent_path() / "acetate" / "plugins";
+        if (std::find(out.begin(), out.end(), installed) == out.end()) out.push_back(installed);
     }
     return out;
 }

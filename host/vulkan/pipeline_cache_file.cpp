@@ -1,7 +1,6 @@
 #include "vulkan/pipeline_cache_file.hpp"
 
 #include <fmt/format.h>
-#include <openssl/evp.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
+#include "core/sha256.hpp"
 
 namespace acetate {
 namespace {
@@ -34,7 +34,7 @@ constexpr size_t kHeaderSize = kHashOffset + kSha256Size;       // 84
 constexpr size_t kDriverHeaderSize = 16 + VK_UUID_SIZE;
 static_assert(sizeof(VkPipelineCacheHeaderVersionOne) == kDriverHeaderSize);
 
-using Sha256 = std::array<uint8_t, kSha256Size>;
+static_assert(sizeof(Sha256Digest) == kSha256Size);
 
 // Explicit little-endian coding: the Vulkan spec fixes the driver header's byte order this way
 // too, and it keeps the format independent of struct padding.
@@ -63,15 +63,6 @@ std::string hex(std::span<const uint8_t> bytes) {
 
 Error invalid(std::string_view name, std::string_view what) {
     return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}", name, what));
-}
-
-Result<Sha256> sha256(std::span<const uint8_t> data, std::string_view name) {
-    Sha256 digest{};
-    unsigned int length = 0;
-    if (EVP_Digest(data.data(), data.size(), digest.data(), &length, EVP_sha256(), nullptr) != 1 ||
-        length != digest.size())
-        return make_error(ErrorCode::Io, fmt::format("{}: SHA-256 failed (OpenSSL)", name));
-    return digest;
 }
 
 // Compares one identity field; the message says which one is stale and both values.
@@ -127,8 +118,7 @@ Result<void> check_driver_header(std::span<const uint8_t> data, const PipelineCa
 
 Result<std::vector<uint8_t>> encode_pipeline_cache(const PipelineCacheIdentity& id,
                                                    std::span<const uint8_t> data) {
-    auto digest = sha256(data, "pipeline cache");
-    if (!digest) return digest.error();
+    const Sha256Digest digest = sha256_digest(data.data(), data.size());
     std::vector<uint8_t> out;
     out.reserve(kHeaderSize + data.size());
     out.insert(out.end(), kMagic.begin(), kMagic.end());
@@ -138,7 +128,7 @@ Result<std::vector<uint8_t>> encode_pipeline_cache(const PipelineCacheIdentity& 
     put_u32(out, id.driver_version);
     out.insert(out.end(), id.pipeline_cache_uuid.begin(), id.pipeline_cache_uuid.end());
     put_u64(out, data.size());
-    out.insert(out.end(), digest->begin(), digest->end());
+    out.insert(out.end(), digest.begin(), digest.end());
     out.insert(out.end(), data.begin(), data.end());
     return out;
 }
@@ -171,9 +161,8 @@ Result<std::vector<uint8_t>> decode_pipeline_cache(std::span<const uint8_t> byte
         return invalid(name, fmt::format("data size mismatch: the header says {} bytes, {} follow"
                                          " (truncated or overwritten)",
                                          data_size, data.size()));
-    auto digest = sha256(data, name);
-    if (!digest) return digest.error();
-    if (!std::equal(digest->begin(), digest->end(), bytes.begin() + kHashOffset))
+    const Sha256Digest digest = sha256_digest(data.data(), data.size());
+    if (!std::equal(digest.begin(), digest.end(), bytes.begin() + kHashOffset))
         return invalid(name, "hash mismatch: the SHA-256 of the data differs from the header");
     ACETATE_TRY(check_driver_header(data, id, name));
     return std::vector<uint8_t>(data.begin(), data.end());

@@ -430,14 +430,6 @@ Result<void> Registry::update(const fs::path& file,
     return {};
 }
 
-Result<std::string> file_sha256(const fs::path& file) {
-    // A plugin binary has no size limit of its own; it is still opened without blocking and
-    // read only when it is a regular file.
-    auto bytes = read_input_file(file, std::numeric_limits<std::uint64_t>::max(), "a plugin");
-    if (!bytes) return bytes.error();
-    return sha256_hex(bytes.value());
-}
-
 std::string utc_now_iso8601() {
     const std::time_t now = std::time(nullptr);
     std::tm utc{};

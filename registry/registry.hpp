@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "core/result.hpp"
+#include "core/sha256.hpp"  // file_sha256, which callers of the registry use with it
 
 namespace acetate {
 
@@ -242,8 +243,6 @@ std::string render_registry_markdown(const Registry& registry, std::string_view 
 Result<void> write_registry_markdown(const Registry& registry, const std::filesystem::path& file,
                                      std::string_view source_name);
 
-// Lowercase hex SHA-256 of a file's bytes (a plugin binary); Io naming the file on failure.
-Result<std::string> file_sha256(const std::filesystem::path& file);
 // The current time as ISO-8601 UTC, whole seconds: 2025-11-22T08:51:00Z.
 std::string utc_now_iso8601();
 

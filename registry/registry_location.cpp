@@ -1,5 +1,7 @@
 #include "registry_location.hpp"
 
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <system_error>
 
@@ -21,9 +23,21 @@ fs::path same_file_form(const fs::path& p) {
     return ec ? p.lexically_normal() : canonical;
 }
 
-// PREFIX for PREFIX/bin/program.
+// The installation this code was installed with: PREFIX for PREFIX/<libdir>/libacetate-host.so,
+// the library this file is compiled into. Found from the library rather than the program, so a
+// program that embeds the host from anywhere (not only PREFIX/bin/acetate) finds the installed
+// keys and sign-offs.
 fs::path install_prefix() {
-    return program_file().parent_path().parent_path();
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<const void*>(&install_prefix), &info) && info.dli_fname) {
+        fs::path prefix = same_file_form(info.dli_fname).parent_path();
+        // One folder up per component of the libdir ("lib", or "lib/x86_64-linux-gnu").
+        const fs::path libdir = ACETATE_INSTALL_LIBDIR;
+        for (auto part = libdir.begin(); part != libdir.end(); ++part)
+            prefix = prefix.parent_path();
+        return prefix;
+    }
+    return program_file().parent_path().parent_path();  // PREFIX for PREFIX/bin/program
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "child_process.hpp"
+#include "core/child_process.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -14,7 +14,7 @@
 
 extern char** environ;
 
-namespace acetate::harness {
+namespace acetate {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -171,4 +171,4 @@ std::string plugin_ended(const ChildOutcome& outcome, const std::string& doing) 
     return fmt::format("the plugin exited with status {} {}", outcome.exit_code, doing);
 }
 
-}  // namespace acetate::harness
+}  // namespace acetate

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <vector>
 
-#include "child_process.hpp"
+#include "core/child_process.hpp"
 
 extern char** environ;
 
@@ -121,7 +121,7 @@ Result<std::string> ssh_sign(const fs::path& key, std::string_view message) {
     if (run->status != 0 || from == std::string::npos || to == std::string::npos)
         return make_error(ErrorCode::Io,
                           fmt::format("{}: cannot sign with this key: ssh-keygen: {}", key.string(),
-                                      harness::last_line(run->err)));
+                                      last_line(run->err)));
     return run->out.substr(from, to + end.size() - from) + "\n";
 }
 
@@ -173,7 +173,7 @@ Result<void> SignatureVerifier::verify(std::string_view principal, std::string_v
         if (principals->err.find("parse") != std::string::npos ||
             principals->err.find("armor") != std::string::npos)
             return invalid(fmt::format("is not an SSH signature (ssh-keygen: {})",
-                                       harness::last_line(principals->err)));
+                                       last_line(principals->err)));
         return invalid(fmt::format("was made by a key that {} does not list",
                                    allowed_signers_.filename().string()));
     }

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace acetate::harness {
+namespace acetate {
 
 struct ChildJob {
     std::vector<std::string> argv;  // argv[0] is the executable's path
@@ -45,4 +45,4 @@ std::string with_log(const std::string& what, const std::string& log);
 // SIGSEGV)".
 std::string plugin_ended(const ChildOutcome& outcome, const std::string& doing);
 
-}  // namespace acetate::harness
+}  // namespace acetate

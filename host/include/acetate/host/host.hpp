@@ -1,0 +1,159 @@
+#pragma once
+// The Acetate host, embedded in another program (docs/embedding.md). A Host owns a Vulkan
+// device, the plugin loader and the pipelines; a Scene is one scene loaded on it, with its
+// floors, images and render targets. Rendering a frame allocates, loads and compiles nothing:
+// everything a scene needs is created when it is loaded.
+//
+//     auto host = acetate::host::Host::create({});
+//     auto scene = (*host)->load_scene_file("harbour/scene.json");
+//     (*scene)->set_active_floor(1);
+//     (*scene)->set_time(2.5);
+//     auto stats = (*scene)->render();
+//     (*scene)->write_frame("frame.png");
+//
+// The load policy is part of the host, not of a program built on it: a scene loads a plugin
+// only when the validation registry holds it VALIDATED for exactly that binary (SHA-256), every
+// sign-off verified against the maintainers' keys (docs/registry.md, "Host policy"), unless
+// HostOptions::allow_unvalidated says otherwise. A refused plugin fails the scene's load with
+// the same line `acetate render` prints; its code never runs in the process.
+//
+// Errors are Result values (acetate/host/result.hpp) with one-line messages; nothing here
+// throws. A Host and its Scenes are used from one thread at a time.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "acetate/host/result.hpp"
+
+namespace acetate::host {
+
+struct HostOptions {
+    // The device: an index ("1") or a case-insensitive name substring ("llvmpipe"). Empty:
+    // $ACETATE_DEVICE, else the first discrete GPU, then integrated, virtual, CPU (lavapipe).
+    std::string device;
+    // The Khronos validation layer. A frame during which it reports anything fails render().
+    // Off by default, or on with $ACETATE_VALIDATION=1.
+    bool validation = false;
+    // Keeps compiled pipelines between runs in the user's cache folder
+    // ($XDG_CACHE_HOME/acetate), written by save_pipeline_cache().
+    bool pipeline_cache = true;
+    // Searched for plugins before $ACETATE_PLUGIN_PATH and the installation's lib/acetate/plugins.
+    std::vector<std::filesystem::path> plugin_directories;
+
+    // The load policy. The registry file: else $ACETATE_REGISTRY, else the user's
+    // ($XDG_DATA_HOME/acetate/registry.json). The maintainers' keys: else
+    // $ACETATE_ALLOWED_SIGNERS, else the installation's share/acetate/validation/allowed_signers.
+    std::optional<std::filesystem::path> registry;
+    std::optional<std::filesystem::path> allowed_signers;
+    // Loads plugins the registry does not hold VALIDATED, each with one warning. For
+    // development only: nothing vouches for what such a plugin does.
+    bool allow_unvalidated = false;
+    // Where warnings go, one line each (no newline); default: standard error.
+    std::function<void(const std::string&)> on_warning;
+};
+
+// A frame read back: premultiplied, linear RGBA, 32-bit float, rows top to bottom.
+struct Image {
+    uint32_t width = 0, height = 0;
+    std::vector<float> rgba;  // width * height * 4
+};
+
+struct LoadStatistics {
+    double milliseconds = 0;
+    uint64_t images_loaded = 0, targets_allocated = 0, shaders_compiled = 0, pipelines_created = 0;
+};
+
+struct FrameStatistics {
+    uint32_t active_floor = 0;
+    double time = 0;             // seconds, as the effects saw it
+    double milliseconds = 0;     // record, submit and wait
+    uint32_t passes = 0;         // draws recorded
+    uint64_t pixels_shaded = 0;  // sum over passes of their area
+    uint64_t violations = 0;     // pixels reaching the composite with colour at alpha 0, or NaN
+    // Work done during the frame: 0 for all four, always (everything is made at load).
+    uint64_t images_loaded = 0, targets_allocated = 0, shaders_compiled = 0, pipelines_created = 0;
+};
+
+class Scene;
+
+class Host {
+  public:
+    // Starts Vulkan on the chosen device and reads the load policy's registry (a missing file
+    // means nothing is VALIDATED; a malformed one is an error naming the file and field).
+    // Fails when no device matches, the device lacks what Acetate needs, or the registry is bad.
+    static Result<std::unique_ptr<Host>> create(const HostOptions& options);
+    ~Host();
+    Host(const Host&) = delete;
+    Host& operator=(const Host&) = delete;
+
+    // The device in use, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
+    std::string device_name() const;
+
+    // Loads a scene file (docs/scene-format.md): its plugins (each through the load policy),
+    // images and masks; allocates its targets; compiles and warms every pipeline. Errors name
+    // the file and the JSON field, or the plugin and why it was refused.
+    Result<std::unique_ptr<Scene>> load_scene_file(const std::filesystem::path& file);
+    // The same from a description in memory: `json` is the scene file's text; relative image
+    // paths are taken from `base_directory`; messages name the scene `name`.
+    Result<std::unique_ptr<Scene>> load_scene_text(const std::string& json,
+                                                   const std::filesystem::path& base_directory,
+                                                   const std::string& name = "scene.json");
+
+    // Writes the pipeline cache (with HostOptions::pipeline_cache), atomically.
+    Result<void> save_pipeline_cache();
+
+    struct State;  // what a Host and its Scenes share
+
+  private:
+    explicit Host(std::shared_ptr<State> state);
+    std::shared_ptr<State> state_;
+};
+
+// A scene loaded on a Host. It keeps what it needs of the Host alive, so either may be
+// destroyed first.
+class Scene {
+  public:
+    ~Scene();
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    uint32_t width() const;  // the canvas, in pixels
+    uint32_t height() const;
+    uint32_t floor_count() const;
+    std::string floor_name(uint32_t floor) const;  // "" for a floor out of range
+
+    // The floor the user is on: floors above it are not drawn. Starts at the scene's
+    // active_floor. Fails for a floor out of range, naming the scene and the floors it has.
+    Result<void> set_active_floor(uint32_t floor);
+    uint32_t active_floor() const;
+    // The time effects animate with, in seconds. Fails for a value that is not finite or
+    // outside the 32-bit float range (effects read it as a float).
+    Result<void> set_time(double seconds);
+    double time() const;
+
+    // Renders floors 0..active_floor, their effects, the composite and the global effects.
+    // Allocates nothing. Fails on a device error, or with validation on, on a validation
+    // message during the frame.
+    Result<FrameStatistics> render();
+    // The last frame rendered (render() first): the composite over the canvas background.
+    Result<Image> read_frame();
+    // read_frame() written to `file`: .exr (half float, premultiplied linear) or .png (8-bit
+    // sRGB), atomically: the file is the old one or the new one, never half written.
+    Result<void> write_frame(const std::filesystem::path& file);
+
+    const LoadStatistics& load_statistics() const;
+
+    struct Loaded;  // the loaded scene behind it
+
+  private:
+    friend class Host;
+    explicit Scene(std::unique_ptr<Loaded> loaded);
+    std::unique_ptr<Loaded> loaded_;
+};
+
+}  // namespace acetate::host
