@@ -248,8 +248,8 @@ class RawRenderer {
                 die("raw baseline: only floors drawn directly are mirrored");
         resources_ = must(SceneResources::load(ctx, scene, format, {}), "SceneResources::load");
         pipelines_ = &renderer().host_pipelines();
-        must(pipelines_->ensure(Stage::TileToAccum, format), "HostPipelines::ensure");
-        must(pipelines_->ensure(Stage::Output, format), "HostPipelines::ensure");
+        must(pipelines_->ensure(HostPass::TileToAccum, format), "HostPipelines::ensure");
+        must(pipelines_->ensure(HostPass::Output, format), "HostPipelines::ensure");
         const VkImageUsageFlags usage =
             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
             VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -370,7 +370,7 @@ class RawRenderer {
                                        0, count, writes);
     }
 
-    void push(const StagePushConstants& pc) {
+    void push(const HostPassPushConstants& pc) {
         vkCmdPushConstants(cmd_, pipelines_->layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
                            &pc);
@@ -384,7 +384,7 @@ class RawRenderer {
             // As draw_tiles: a 1:1 tile reads its texels through the nearest sampler.
             const VkSampler sampler = pipelines_->tile_sampler(tile.one_to_one);
             push_images(tile.texture->view(), tile.texture->view(), sampler, 1);
-            StagePushConstants pc;
+            HostPassPushConstants pc;
             pc.rect[0] = float(tile.rect.x);
             pc.rect[1] = float(tile.rect.y);
             pc.rect[2] = float(tile.rect.width);
@@ -415,7 +415,7 @@ class RawRenderer {
             if (!area.empty()) {
                 begin_pass(accumulation_.view(), area, VK_ATTACHMENT_LOAD_OP_LOAD);
                 vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                  pipelines_->pipeline(Stage::TileToAccum, format_));
+                                  pipelines_->pipeline(HostPass::TileToAccum, format_));
                 for (const FloorStep& step : plan_.steps)
                     if (step.path == FloorPath::Direct) draw_floor(step);
                 vkCmdEndRendering(cmd_);
@@ -428,7 +428,7 @@ class RawRenderer {
                 layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
                 begin_pass(accumulation_.view(), step.scissor, VK_ATTACHMENT_LOAD_OP_LOAD);
                 vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                  pipelines_->pipeline(Stage::TileToAccum, format_));
+                                  pipelines_->pipeline(HostPass::TileToAccum, format_));
                 draw_floor(step);
                 vkCmdEndRendering(cmd_);
             }
@@ -444,9 +444,9 @@ class RawRenderer {
         const VkRect2D scissor = vk_rect(all);
         vkCmdSetScissor(cmd_, 0, 1, &scissor);
         vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                          pipelines_->pipeline(Stage::Output, format_));
+                          pipelines_->pipeline(HostPass::Output, format_));
         push_images(accumulation_.view(), accumulation_.view(), pipelines_->nearest_sampler(), 2);
-        StagePushConstants pc;
+        HostPassPushConstants pc;
         std::copy(scene_.background.begin(), scene_.background.end(), pc.tint);
         pc.canvas[0] = float(scene_.width);
         pc.canvas[1] = float(scene_.height);

@@ -254,7 +254,7 @@ class LimitCase {
             die("no GPU timings: " + compositor_->gpu_timings_warning());
         resources_ = must(SceneResources::load(ctx, scene_, kFormat, {}), "SceneResources::load");
         pipelines_ = &g_renderer->host_pipelines();
-        must(pipelines_->ensure(Stage::TileToAccum, kFormat), "HostPipelines::ensure");
+        must(pipelines_->ensure(HostPass::TileToAccum, kFormat), "HostPipelines::ensure");
         bare_texture_ = must(
             GpuImage::create(ctx, "bare.texture", kWidth, kHeight, kFormat,
                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, false),
@@ -299,8 +299,8 @@ class LimitCase {
     static VkPipeline g_bare_pipeline;
 
   private:
-    StagePushConstants canvas_push() const {
-        StagePushConstants pc;
+    HostPassPushConstants canvas_push() const {
+        HostPassPushConstants pc;
         pc.rect[2] = float(kWidth);
         pc.rect[3] = float(kHeight);
         pc.canvas[0] = float(kWidth);
@@ -338,7 +338,7 @@ class LimitCase {
                                         0, 1, &write);
     }
 
-    void push(VkCommandBuffer cmd, const StagePushConstants& pc) {
+    void push(VkCommandBuffer cmd, const HostPassPushConstants& pc) {
         vkCmdPushConstants(cmd, pipelines_->layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
                            &pc);
@@ -349,9 +349,9 @@ class LimitCase {
         const LoadedTile& tile = resources_->floors().at(0).tiles.at(0);
         begin_pass(cmd);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                          pipelines_->pipeline(Stage::TileToAccum, kFormat));
+                          pipelines_->pipeline(HostPass::TileToAccum, kFormat));
         push_texture(cmd, tile.texture->view(), pipelines_->tile_sampler(tile.one_to_one));
-        StagePushConstants pc = canvas_push();
+        HostPassPushConstants pc = canvas_push();
         pc.rect[0] = float(tile.rect.x);
         pc.rect[1] = float(tile.rect.y);
         pc.rect[2] = float(tile.rect.width);

@@ -61,8 +61,9 @@ class PluginLoader {
 
     // Sets the hook every later load() and load_file() asks before opening a file. Without
     // one (the default, for tests and tools) every file found is loaded; `acetate render`
-    // sets the registry's host policy (host/cli/render_command.cpp). An empty function
-    // removes the hook. load() asks once per id: a loaded plugin is kept and not asked again.
+    // and the embedding API set the registry's load policy (registry/load_policy.hpp). An empty
+    // function removes the hook. load() asks once per id: a loaded plugin is kept and not asked
+    // again.
     void set_admission(Admission admission) { admission_ = std::move(admission); }
 
     const std::vector<std::filesystem::path>& directories() const { return directories_; }

@@ -86,7 +86,7 @@ std::array<float, 3> isolation_tint(uint32_t index) {
 
 Compositor::Compositor(Renderer& renderer) : renderer_(renderer), context_(renderer.context()) {}
 
-VkPipeline Compositor::host_pipeline(Stage stage) const {
+VkPipeline Compositor::host_pipeline(HostPass stage) const {
     return pipelines_->pipeline(stage, options_.format);
 }
 
@@ -94,9 +94,9 @@ Compositor::~Compositor() {
     if (context_.device()) vkDeviceWaitIdle(context_.device());
 }
 
-Stage Compositor::inject_stage() const {
-    return options_.inject && options_.inject->inside_coverage ? Stage::InjectCovered
-                                                               : Stage::InjectUncovered;
+HostPass Compositor::inject_stage() const {
+    return options_.inject && options_.inject->inside_coverage ? HostPass::InjectCovered
+                                                               : HostPass::InjectUncovered;
 }
 
 void Compositor::set_scissor(VkCommandBuffer cmd, const PixelRect& rect) {
@@ -106,8 +106,8 @@ void Compositor::set_scissor(VkCommandBuffer cmd, const PixelRect& rect) {
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-void Compositor::bind(VkCommandBuffer cmd, Stage stage, VkImageView primary, VkImageView secondary,
-                      VkSampler sampler) {
+void Compositor::bind(VkCommandBuffer cmd, HostPass stage, VkImageView primary,
+                      VkImageView secondary, VkSampler sampler) {
     // Tile stages draw with their isolation variant in that view (the one load prepared).
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                       host_pipeline(view_variant(stage, options_.view == OutputView::Isolation)));
@@ -131,7 +131,7 @@ void Compositor::bind(VkCommandBuffer cmd, Stage stage, VkImageView primary, VkI
                                   writes);
 }
 
-void Compositor::draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor,
+void Compositor::draw_tiles(VkCommandBuffer cmd, HostPass stage, uint32_t floor,
                             const PixelRect& scissor, FloorFrameReport& report) {
     const LoadedFloor& loaded = resources_->floors()[floor];
     const auto tint = isolation_tint(floor);
@@ -141,7 +141,7 @@ void Compositor::draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor,
         if (shaded.empty()) continue;
         bind(cmd, stage, tile.texture->view(), tile.texture->view(),
              pipelines_->tile_sampler(tile.one_to_one));
-        StagePushConstants push;
+        HostPassPushConstants push;
         push.rect[0] = float(tile.rect.x);
         push.rect[1] = float(tile.rect.y);
         push.rect[2] = float(tile.rect.width);
@@ -184,7 +184,7 @@ void Compositor::record_floors_direct(VkCommandBuffer cmd, const std::vector<Flo
         // Over is associative, so drawing each tile over the accumulation equals compositing
         // the floor's own "tiles over transparent" image over it (docs/OVERVIEW.md).
         if (step.path == FloorPath::Direct)
-            draw_tiles(cmd, Stage::TileToAccum, step.floor, step.scissor, report);
+            draw_tiles(cmd, HostPass::TileToAccum, step.floor, step.scissor, report);
         stats.passes += report.passes;
         stats.pixels_shaded += report.pixels_shaded;
         stats.floors.push_back(report);
@@ -235,10 +235,10 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     info.pStencilAttachment = &stencil_info;
     info.pDepthAttachment = has_depth ? &stencil_info : nullptr;
     vkCmdBeginRendering(cmd, &info);
-    draw_tiles(cmd, Stage::TileToTarget, step.floor, step.scissor, report);
+    draw_tiles(cmd, HostPass::TileToTarget, step.floor, step.scissor, report);
     if (options_.inject) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, host_pipeline(inject_stage()));
-        StagePushConstants push;
+        HostPassPushConstants push;
         std::memcpy(push.tint, options_.inject->colour.data(), sizeof(push.tint));
         vkCmdPushConstants(cmd, pipelines_->layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
@@ -266,8 +266,6 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
             EffectIo io;
             io.previous = current;
             io.result = next;
-            io.masks = &resources_->floors()[step.floor].masks;
-            io.blank_mask = resources_->blank_mask();
             io.result_scissor =
                 effect->expanding || expanding ? expansion_areas_[step.floor] : step.scissor;
             io.result_rects = rects;
@@ -302,9 +300,9 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     info.pColorAttachments = &accum_info;
     vkCmdBeginRendering(cmd, &info);
     set_scissor(cmd, composite_area);
-    bind(cmd, expanding ? Stage::CompositeByAlpha : Stage::Composite, current->view(),
+    bind(cmd, expanding ? HostPass::CompositeByAlpha : HostPass::Composite, current->view(),
          current->view(), pipelines_->nearest_sampler());
-    StagePushConstants push;
+    HostPassPushConstants push;
     push.floor_index = step.floor;
     push.mode = expanding ? 1u : 0u;
     vkCmdPushConstants(cmd, pipelines_->layout(),
@@ -380,9 +378,9 @@ void Compositor::record_output(VkCommandBuffer cmd, FrameStats& stats) {
     info.pColorAttachments = &color;
     vkCmdBeginRendering(cmd, &info);
     set_scissor(cmd, all);
-    bind(cmd, Stage::Output, accumulation.view(),
+    bind(cmd, HostPass::Output, accumulation.view(),
          floor_view ? floor_image->view() : accumulation.view(), pipelines_->nearest_sampler());
-    StagePushConstants push;
+    HostPassPushConstants push;
     std::memcpy(push.tint, scene_.background.data(), sizeof(push.tint));
     push.canvas[0] = float(width_);
     push.canvas[1] = float(height_);

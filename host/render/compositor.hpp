@@ -148,7 +148,7 @@ class Compositor {
     // Where a floor with coverage-expanding effects may change pixels (see create_effects).
     PixelRect expansion_area(const SceneDesc& scene, size_t floor) const;
     void record_global_effects(VkCommandBuffer cmd, FrameStats& stats, double time);
-    VkPipeline host_pipeline(Stage stage) const;
+    VkPipeline host_pipeline(HostPass stage) const;
     Result<void> create_targets(const SceneDesc& scene);
     Result<void> warm_pipelines();
     void record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats, double time);
@@ -158,13 +158,13 @@ class Compositor {
     void record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step, bool clear_all,
                                      double time, FloorFrameReport& report);
     void record_output(VkCommandBuffer cmd, FrameStats& stats);
-    void draw_tiles(VkCommandBuffer cmd, Stage stage, uint32_t floor, const PixelRect& scissor,
+    void draw_tiles(VkCommandBuffer cmd, HostPass stage, uint32_t floor, const PixelRect& scissor,
                     FloorFrameReport& report);
-    void bind(VkCommandBuffer cmd, Stage stage, VkImageView primary, VkImageView secondary,
+    void bind(VkCommandBuffer cmd, HostPass stage, VkImageView primary, VkImageView secondary,
               VkSampler sampler);
     void set_scissor(VkCommandBuffer cmd, const PixelRect& rect);
     bool needs_floor_target() const;
-    Stage inject_stage() const;
+    HostPass inject_stage() const;
 
     Renderer& renderer_;
     VulkanContext& context_;

@@ -127,20 +127,30 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
                                           out->options_.mask_kinds, masks.value());
     if (!resources) return resources.error();
     out->resources_ = std::move(resources.value());
+    // Each mask input now names the image a frame binds: the floor's composite of that kind, or
+    // the scene-size transparent mask where the floor has none (a global effect reads no floor's
+    // masks: the renderer's blank texture).
+    const GpuImage& blank_texture = renderer.effect_pipelines().blank_texture();
+    const GpuImage& blank_mask =
+        out->resources_->blank_mask() ? *out->resources_->blank_mask() : blank_texture;
+    for (size_t f = 0; f < out->floor_effects_.size(); ++f)
+        for (auto& effect : out->floor_effects_[f])
+            bind_pass_masks(*effect, &out->resources_->floors()[f].masks, blank_mask);
+    for (auto& effect : out->global_effects_) bind_pass_masks(*effect, nullptr, blank_texture);
     ACETATE_TRY(out->create_targets(scene));
 
     // Only the stages this scene uses are compiled (once per process: the pool keeps them).
-    std::vector<Stage> stages{Stage::Output};
-    if (options.plan.draw_direct) stages.push_back(Stage::TileToAccum);
+    std::vector<HostPass> stages{HostPass::Output};
+    if (options.plan.draw_direct) stages.push_back(HostPass::TileToAccum);
     if (out->floor_color_) {
-        stages.push_back(Stage::TileToTarget);
-        stages.push_back(Stage::Composite);
+        stages.push_back(HostPass::TileToTarget);
+        stages.push_back(HostPass::Composite);
         for (const auto& floor : out->floor_effects_)
             if (std::any_of(floor.begin(), floor.end(), [](const auto& e) { return e->expanding; }))
-                stages.push_back(Stage::CompositeByAlpha);
+                stages.push_back(HostPass::CompositeByAlpha);
         if (options.inject) stages.push_back(out->inject_stage());
     }
-    for (Stage stage : stages)
+    for (HostPass stage : stages)
         ACETATE_TRY(out->pipelines_->ensure(
             view_variant(stage, options.view == OutputView::Isolation), options.format));
     // The planner's view of each floor, fixed at load. A floor with a coverage-expanding effect
@@ -264,7 +274,7 @@ Result<void> Compositor::warm_pipelines() {
                 textures.push_back(used);
     const PixelRect pixel{0, 0, 1, 1};
     const bool has_depth = context_.stencil_format() != VK_FORMAT_S8_UINT;
-    auto draw_one_pixel = [&](VkCommandBuffer cmd, Stage stage, GpuImage& target, bool stencil,
+    auto draw_one_pixel = [&](VkCommandBuffer cmd, HostPass stage, GpuImage& target, bool stencil,
                               VkImageView input, VkSampler tile_sampler = VK_NULL_HANDLE) {
         target.transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
         VkRenderingAttachmentInfo color = color_attachment(target.view(), true);
@@ -287,10 +297,11 @@ Result<void> Compositor::warm_pipelines() {
         vkCmdBeginRendering(cmd, &info);
         set_scissor(cmd, pixel);
         // The same sampler as the real draws: lavapipe's shader variants depend on it too.
-        const bool is_tile_stage = stage == Stage::TileToTarget || stage == Stage::TileToAccum;
+        const bool is_tile_stage =
+            stage == HostPass::TileToTarget || stage == HostPass::TileToAccum;
         bind(cmd, stage, input, input,
              is_tile_stage ? tile_sampler : pipelines_->nearest_sampler());
-        StagePushConstants push;
+        HostPassPushConstants push;
         push.rect[2] = push.rect[3] = 1;
         push.canvas[0] = float(width_);
         push.canvas[1] = float(height_);
@@ -329,33 +340,30 @@ Result<void> Compositor::warm_pipelines() {
         // the accumulation as input, everything else with a tile texture or the output.
         if (options_.plan.draw_direct)
             for (const auto& [texture, sampler] : textures)
-                draw_one_pixel(cmd, Stage::TileToAccum, accumulation_, false, texture->view(),
+                draw_one_pixel(cmd, HostPass::TileToAccum, accumulation_, false, texture->view(),
                                sampler);
         output_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         if (floor_color_) {
             for (const auto& [texture, sampler] : textures)
-                draw_one_pixel(cmd, Stage::TileToTarget, *floor_color_, true, texture->view(),
+                draw_one_pixel(cmd, HostPass::TileToTarget, *floor_color_, true, texture->view(),
                                sampler);
             if (options_.inject)
                 draw_one_pixel(cmd, inject_stage(), *floor_color_, true, output_.view());
-            draw_one_pixel(cmd, Stage::Composite, accumulation_, true, output_.view());
+            draw_one_pixel(cmd, HostPass::Composite, accumulation_, true, output_.view());
             if (std::any_of(floor_effects_.begin(), floor_effects_.end(), [](const auto& f) {
                     return std::any_of(f.begin(), f.end(),
                                        [](const auto& e) { return e->expanding; });
                 }))
-                draw_one_pixel(cmd, Stage::CompositeByAlpha, accumulation_, true, output_.view());
+                draw_one_pixel(cmd, HostPass::CompositeByAlpha, accumulation_, true,
+                               output_.view());
         }
         accumulation_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        draw_one_pixel(cmd, Stage::Output, output_, false, accumulation_.view());
+        draw_one_pixel(cmd, HostPass::Output, output_, false, accumulation_.view());
         // Every effect pass too, reading the (cleared) output and writing one pixel.
-        auto warm_effect = [&](EffectInstance& effect, GpuImage& result,
-                               const std::map<std::string, GpuImage>* masks,
-                               const GpuImage* blank_mask) {
+        auto warm_effect = [&](EffectInstance& effect, GpuImage& result) {
             EffectIo io;
             io.previous = &output_;
             io.result = &result;
-            io.masks = masks;
-            io.blank_mask = blank_mask;  // what the real frame binds, texture state and all
             io.result_scissor = PixelRect{0, 0, 1, 1};
             io.canvas_width = width_;
             io.canvas_height = height_;
@@ -363,12 +371,9 @@ Result<void> Compositor::warm_pipelines() {
             FloorFrameReport ignored;
             record_effect(cmd, renderer_, effect, io, ignored);
         };
-        for (size_t f = 0; f < floor_effects_.size(); ++f)
-            for (auto& effect : floor_effects_[f])
-                warm_effect(*effect, *floor_pingpong_, &resources_->floors()[f].masks,
-                            resources_->blank_mask());
-        for (auto& effect : global_effects_)
-            warm_effect(*effect, *accumulation_pingpong_, nullptr, nullptr);
+        for (auto& floor : floor_effects_)
+            for (auto& effect : floor) warm_effect(*effect, *floor_pingpong_);
+        for (auto& effect : global_effects_) warm_effect(*effect, *accumulation_pingpong_);
         // Poisoned after the warm-up, which wrote a pixel of some targets: until an effect
         // writes it, every texel reads as the poison. Once only: what one floor or frame
         // wrote must stay for the next (a plugin reading it is then caught by the isolation

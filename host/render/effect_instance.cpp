@@ -199,8 +199,17 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
     for (const GraphPass& pass : graph->passes) {
         EffectPassRuntime runtime;
         runtime.label = instance->label + "." + pass.name;
-        runtime.inputs = pass.inputs;
-        runtime.output = pass.output;
+        for (const std::string& input : pass.inputs) {
+            PassInput resolved;
+            if (input.rfind("texture.", 0) == 0)
+                resolved.image = &instance->textures.at(input.substr(8));
+            else if (input.rfind("mask.", 0) == 0)
+                resolved.mask_kind = input.substr(5);
+            else if (input != "previous")
+                resolved.image = instance->targets.at(input);
+            runtime.inputs.push_back(std::move(resolved));
+        }
+        runtime.target = pass.output == "result" ? nullptr : instance->targets.at(pass.output);
         runtime.blend = pass.blend;
         runtime.instance_count = pass.instance_count;
         runtime.instance_data_offset = pass.instance_data_offset;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -52,15 +53,27 @@ std::vector<GpuImage*> EffectTargets::images() {
     return out;
 }
 
+void bind_pass_masks(EffectInstance& instance, const std::map<std::string, GpuImage>* masks,
+                     const GpuImage& blank) {
+    for (EffectPassRuntime& pass : instance.passes)
+        for (PassInput& input : pass.inputs) {
+            if (input.mask_kind.empty()) continue;
+            input.image = &blank;
+            if (masks)
+                if (auto found = masks->find(input.mask_kind); found != masks->end())
+                    input.image = &found->second;
+        }
+}
+
 void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& instance,
                    const EffectIo& io, FloorFrameReport& report) {
     EffectPipelines& pipelines = renderer.effect_pipelines();
     VulkanContext& context = renderer.context();
     for (EffectPassRuntime& pass : instance.passes) {
-        GpuImage* output = pass.output == "result" ? io.result : instance.targets.at(pass.output);
-        PixelRect scissor = pass.output == "result" ? io.result_scissor
-                                                    : PixelRect{0, 0, int64_t(output->width()),
-                                                                int64_t(output->height())};
+        GpuImage* output = pass.target ? pass.target : io.result;
+        PixelRect scissor =
+            pass.target ? PixelRect{0, 0, int64_t(output->width()), int64_t(output->height())}
+                        : io.result_scissor;
         if (io.warm_up) scissor = PixelRect{0, 0, 1, 1};
         // Frame uniforms for this pass (the buffer is host-coherent and frames are synchronous).
         auto* u = static_cast<float*>(pass.uniforms.mapped());
@@ -94,32 +107,19 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
             clock[4 + i * 4] = std::min(float(turns - std::floor(turns)), 0x1.fffffep-1f);
         }
 
-        // Inputs in binding order.
-        std::vector<VkDescriptorImageInfo> images;
-        for (const std::string& input : pass.inputs) {
-            const GpuImage* image = nullptr;
-            if (input == "previous") {
-                image = io.previous;
-            } else if (input.rfind("texture.", 0) == 0) {
-                image = &instance.textures.at(input.substr(8));
-            } else if (input.rfind("mask.", 0) == 0) {
-                // A floor without this mask kind reads a transparent texture.
-                image = io.blank_mask ? io.blank_mask : &pipelines.blank_texture();
-                if (io.masks)
-                    if (auto found = io.masks->find(input.substr(5)); found != io.masks->end())
-                        image = &found->second;
-            } else {
-                image = instance.targets.at(input);
-            }
-            GpuImage* mutable_image = const_cast<GpuImage*>(image);
-            if (mutable_image->layout() != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-                mutable_image->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-            images.push_back(
-                {pipelines.sampler(), image->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+        // Inputs in binding order; the bindings past them read the blank texture.
+        std::array<VkDescriptorImageInfo, EffectPipelines::kMaxInputs> images;
+        for (size_t i = 0; i < images.size(); ++i) {
+            const GpuImage* image = i >= pass.inputs.size() ? &pipelines.blank_texture()
+                                    : pass.inputs[i].image  ? pass.inputs[i].image
+                                                            : io.previous;
+            if (i < pass.inputs.size() &&
+                image->layout() != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+                const_cast<GpuImage*>(image)->transition(cmd,
+                                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            images[i] = {pipelines.sampler(), image->view(),
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         }
-        while (images.size() < EffectPipelines::kMaxInputs)
-            images.push_back({pipelines.sampler(), pipelines.blank_texture().view(),
-                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
         output->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
 
         VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -143,39 +143,41 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
         VkDescriptorBufferInfo data{instance.has_floor_data ? instance.floor_data.buffer()
                                                             : pipelines.empty_buffer().buffer(),
                                     0, VK_WHOLE_SIZE};
-        std::vector<VkWriteDescriptorSet> writes;
+        // The frame uniforms, every input binding, the floor data and the lights.
+        std::array<VkWriteDescriptorSet, EffectPipelines::kMaxInputs + 3> writes{};
+        size_t count = 0;
         VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         write.descriptorCount = 1;
         write.dstBinding = EffectPipelines::kFrameBinding;
         write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
         write.pBufferInfo = &frame;
-        writes.push_back(write);
+        writes[count++] = write;
         for (uint32_t i = 0; i < EffectPipelines::kMaxInputs; ++i) {
             write = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             write.descriptorCount = 1;
             write.dstBinding = EffectPipelines::kFirstInputBinding + i;
             write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
             write.pImageInfo = &images[i];
-            writes.push_back(write);
+            writes[count++] = write;
         }
         write = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         write.descriptorCount = 1;
         write.dstBinding = EffectPipelines::kFloorDataBinding;
         write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         write.pBufferInfo = &data;
-        writes.push_back(write);
+        writes[count++] = write;
         VkDescriptorBufferInfo lights{
             instance.has_lights ? instance.lights.buffer() : pipelines.empty_buffer().buffer(), 0,
             VK_WHOLE_SIZE};
         write.dstBinding = EffectPipelines::kLightsBinding;
         write.pBufferInfo = &lights;
-        writes.push_back(write);
+        writes[count++] = write;
         context.push_descriptor_fn()(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(), 0,
-                                     uint32_t(writes.size()), writes.data());
+                                     uint32_t(count), writes.data());
         // A "result" pass over a floor whose tiles lie apart draws once per rect of their
         // union, so the gaps in their bounding box are never shaded.
         const bool per_rect =
-            pass.output == "result" && !pass.instance_count && io.result_rects && !io.warm_up;
+            !pass.target && !pass.instance_count && io.result_rects && !io.warm_up;
         uint64_t rect_pixels = 0;
         if (pass.instance_count) {
             vkCmdDraw(cmd, 4, io.warm_up ? 1 : pass.instance_count, 0, 0);

@@ -23,11 +23,20 @@ namespace acetate {
 class VulkanContext;
 class Renderer;
 
+// One input of a pass, resolved at load, so a frame binds it without looking up a name: the
+// image itself (a target or texture of the instance; a mask of its floor, or a transparent
+// texture where the floor has none, set by bind_pass_masks once the masks are on the GPU), or
+// "previous", which changes with the frame's ping-pong.
+struct PassInput {
+    const GpuImage* image = nullptr;  // null: "previous"
+    std::string mask_kind;            // a mask input: its kind, until bind_pass_masks
+};
+
 struct EffectPassRuntime {
     std::string label;  // "floor2.acetate.bloom.down3"
     VkPipeline pipeline = VK_NULL_HANDLE;
-    std::vector<std::string> inputs;
-    std::string output;  // "result" or a target name
+    std::vector<PassInput> inputs;  // in binding order
+    GpuImage* target = nullptr;     // what it writes: a target of the instance; null: "result"
     uint32_t blend = 0;
     uint32_t instance_count = 0;  // instanced quads; 0 for a fullscreen pass
     uint32_t instance_data_offset = 0;
@@ -92,9 +101,7 @@ PixelRect floor_coverage_bounds(const SceneDesc& scene, size_t floor);
 struct EffectIo {
     GpuImage* previous = nullptr;  // the floor (or accumulation) so far
     GpuImage* result = nullptr;    // where "result" goes (the other ping-pong image)
-    const std::map<std::string, GpuImage>* masks = nullptr;  // the floor's own
-    const GpuImage* blank_mask = nullptr;  // scene-size, transparent: for kinds the floor lacks
-    PixelRect result_scissor;              // the area "result" passes shade
+    PixelRect result_scissor;      // the area "result" passes shade
     // When set: "result" passes draw once per rect instead (disjoint, inside result_scissor).
     const std::vector<PixelRect>* result_rects = nullptr;
     double time = 0;  // seconds; phases and the clock are reduced from it in double
@@ -103,7 +110,13 @@ struct EffectIo {
     GpuTimer* timer = nullptr;  // marks each pass with its label when the frame is timed
 };
 
-// Records an instance's passes; counts passes and pixels shaded into `report`.
+// Resolves the instance's mask inputs to images: `masks` are its floor's (none for a global
+// effect); a kind missing there reads `blank` (transparent). Called once at load.
+void bind_pass_masks(EffectInstance& instance, const std::map<std::string, GpuImage>* masks,
+                     const GpuImage& blank);
+
+// Records an instance's passes; counts passes and pixels shaded into `report`. Looks up no
+// name and allocates nothing.
 void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& instance,
                    const EffectIo& io, FloorFrameReport& report);
 

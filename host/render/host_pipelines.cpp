@@ -12,36 +12,36 @@
 
 namespace acetate {
 
-const char* stage_name(Stage stage) {
+const char* host_pass_name(HostPass stage) {
     switch (stage) {
-        case Stage::TileToTarget:
+        case HostPass::TileToTarget:
             return "tile-to-target";
-        case Stage::TileToAccum:
+        case HostPass::TileToAccum:
             return "tile-to-accumulation";
-        case Stage::Composite:
+        case HostPass::Composite:
             return "composite";
-        case Stage::CompositeByAlpha:
+        case HostPass::CompositeByAlpha:
             return "composite-by-alpha";
-        case Stage::InjectCovered:
+        case HostPass::InjectCovered:
             return "inject-covered";
-        case Stage::InjectUncovered:
+        case HostPass::InjectUncovered:
             return "inject-uncovered";
-        case Stage::Output:
+        case HostPass::Output:
             return "output";
-        case Stage::TileToTargetIsolation:
+        case HostPass::TileToTargetIsolation:
             return "tile-to-target-isolation";
-        case Stage::TileToAccumIsolation:
+        case HostPass::TileToAccumIsolation:
             return "tile-to-accumulation-isolation";
-        case Stage::Count:
+        case HostPass::Count:
             break;
     }
     return "?";
 }
 
-Stage view_variant(Stage stage, bool isolation) {
+HostPass view_variant(HostPass stage, bool isolation) {
     if (!isolation) return stage;
-    if (stage == Stage::TileToTarget) return Stage::TileToTargetIsolation;
-    if (stage == Stage::TileToAccum) return Stage::TileToAccumIsolation;
+    if (stage == HostPass::TileToTarget) return HostPass::TileToTargetIsolation;
+    if (stage == HostPass::TileToAccum) return HostPass::TileToAccumIsolation;
     return stage;
 }
 
@@ -56,21 +56,21 @@ struct StageState {
     bool over_blend;
 };
 
-StageState state_of(Stage stage) {
+StageState state_of(HostPass stage) {
     switch (stage) {
-        case Stage::TileToTarget:
-        case Stage::TileToTargetIsolation:
+        case HostPass::TileToTarget:
+        case HostPass::TileToTargetIsolation:
             return {"tile.vert", "tile.frag", true, VK_COMPARE_OP_ALWAYS, true, true};
-        case Stage::TileToAccum:
-        case Stage::TileToAccumIsolation:
+        case HostPass::TileToAccum:
+        case HostPass::TileToAccumIsolation:
             return {"tile.vert", "tile.frag", false, VK_COMPARE_OP_ALWAYS, false, true};
-        case Stage::Composite:
+        case HostPass::Composite:
             return {"fullscreen.vert", "composite.frag", true, VK_COMPARE_OP_EQUAL, false, true};
-        case Stage::CompositeByAlpha:
+        case HostPass::CompositeByAlpha:
             return {"fullscreen.vert", "composite.frag", true, VK_COMPARE_OP_ALWAYS, false, true};
-        case Stage::InjectCovered:
+        case HostPass::InjectCovered:
             return {"fullscreen.vert", "inject.frag", true, VK_COMPARE_OP_EQUAL, false, false};
-        case Stage::InjectUncovered:
+        case HostPass::InjectUncovered:
             return {"fullscreen.vert", "inject.frag", true, VK_COMPARE_OP_NOT_EQUAL, false, false};
         default:
             return {"fullscreen.vert", "output.frag", false, VK_COMPARE_OP_ALWAYS, false, false};
@@ -79,13 +79,13 @@ StageState state_of(Stage stage) {
 
 // tile.frag's variants (see its header), inserted after its #version line: each is a shader of
 // its own.
-const char* defines_of(Stage stage) {
+const char* defines_of(HostPass stage) {
     switch (stage) {
-        case Stage::TileToTarget:
+        case HostPass::TileToTarget:
             return "#define KEEP_COVERAGE\n";
-        case Stage::TileToTargetIsolation:
+        case HostPass::TileToTargetIsolation:
             return "#define KEEP_COVERAGE\n#define ISOLATION\n";
-        case Stage::TileToAccumIsolation:
+        case HostPass::TileToAccumIsolation:
             return "#define ISOLATION\n";
         default:
             return "";
@@ -101,20 +101,20 @@ Result<std::unique_ptr<HostPipelines>> HostPipelines::create(VulkanContext& cont
     return out;
 }
 
-Result<void> HostPipelines::ensure(Stage stage, VkFormat color_format) {
+Result<void> HostPipelines::ensure(HostPass stage, VkFormat color_format) {
     if (pipelines_.count({stage, color_format})) return {};
-    const std::string key = fmt::format("host/{}/{}", stage_name(stage), int(color_format));
+    const std::string key = fmt::format("host/{}/{}", host_pass_name(stage), int(color_format));
     auto pipeline = pool_.pipeline(
-        key, [&](VkPipelineCache cache) { return create_stage(stage, color_format, cache); });
+        key, [&](VkPipelineCache cache) { return create_pass(stage, color_format, cache); });
     if (!pipeline) return pipeline.error();
     pipelines_[{stage, color_format}] = pipeline.value();
     return {};
 }
 
-VkPipeline HostPipelines::pipeline(Stage stage, VkFormat color_format) const {
+VkPipeline HostPipelines::pipeline(HostPass stage, VkFormat color_format) const {
     const auto found = pipelines_.find({stage, color_format});
     ACETATE_CHECK(found != pipelines_.end(), "stage \"%s\" was not prepared at load",
-                  stage_name(stage));
+                  host_pass_name(stage));
     return found->second;
 }
 
@@ -146,7 +146,7 @@ Result<void> HostPipelines::create_layout() {
     ACETATE_VK(vkCreateDescriptorSetLayout(device, &set_info, nullptr, &set_layout_));
 
     VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                              sizeof(StagePushConstants)};
+                              sizeof(HostPassPushConstants)};
     VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layout_info.setLayoutCount = 1;
     layout_info.pSetLayouts = &set_layout_;
@@ -165,8 +165,8 @@ Result<void> HostPipelines::create_layout() {
     return {};
 }
 
-Result<VkPipeline> HostPipelines::create_stage(Stage stage, VkFormat color_format,
-                                               VkPipelineCache cache) {
+Result<VkPipeline> HostPipelines::create_pass(HostPass stage, VkFormat color_format,
+                                              VkPipelineCache cache) {
     const StageState s = state_of(stage);
     auto compile = [&](const char* name, std::string_view defines) -> Result<VkShaderModule> {
         const std::string_view n(name);
@@ -201,7 +201,7 @@ Result<VkPipeline> HostPipelines::create_stage(Stage stage, VkFormat color_forma
     // Premultiplied "over" for every stage that composites (docs/design.md, L-one-alpha).
     desc.blend = s.over_blend ? BlendMode::Over : BlendMode::Replace;
     desc.layout = layout_;
-    auto pipeline = create_graphics_pipeline(context_.device(), cache, desc, stage_name(stage));
+    auto pipeline = create_graphics_pipeline(context_.device(), cache, desc, host_pass_name(stage));
     vkDestroyShaderModule(context_.device(), vert.value(), nullptr);
     vkDestroyShaderModule(context_.device(), frag.value(), nullptr);
     return pipeline;

@@ -1,7 +1,7 @@
 #pragma once
-// The host's fixed-function stages, each its own pipeline with its own blend and stencil state:
-// no state shared between stages, no property swaps at run time (docs/design.md,
-// L-separate-stages).
+// The host's own passes (HostPass: tiles, composite, output; not an effect's passes, and not a
+// validation stage), each its own pipeline with its own blend and stencil state: no state
+// shared between passes, no property swaps at run time (docs/design.md, L-separate-stages).
 
 #include <vulkan/vulkan.h>
 
@@ -18,17 +18,17 @@ namespace acetate {
 class VulkanContext;
 class PipelinePool;
 
-// Push constants shared by every host stage (48 bytes; matches the GLSL `Push` blocks).
-struct StagePushConstants {
+// Push constants shared by every host pass (48 bytes; matches the GLSL `Push` blocks).
+struct HostPassPushConstants {
     float rect[4] = {0, 0, 0, 0};  // tile rect in scene pixels
     float tint[4] = {0, 0, 0, 0};  // isolation tint, or the fill colour, or the background
     float canvas[2] = {0, 0};      // canvas size in pixels
     uint32_t floor_index = 0;      // violation counter slot; output: the view
-    uint32_t mode = 0;             // composite: gate mode (tile stages: unused, see Stage)
+    uint32_t mode = 0;             // composite: gate mode (tile passes: unused, see HostPass)
 };
-static_assert(sizeof(StagePushConstants) == 48);
+static_assert(sizeof(HostPassPushConstants) == 48);
 
-enum class Stage {
+enum class HostPass {
     TileToTarget,      // tile -> floor target; over blend; writes stencil = 1 where it covers
     TileToAccum,       // tile -> accumulation directly (floors without effects); over blend
     Composite,         // floor target -> accumulation; over blend; stencil EQUAL 1
@@ -36,30 +36,30 @@ enum class Stage {
     InjectCovered,     // test hook: colour -> floor target where stencil == 1
     InjectUncovered,   // test hook: colour -> floor target where stencil != 1
     Output,            // accumulation -> output image over the background, or a debug view
-    // The tile stages as the isolation view draws them: the tint is compiled in, not chosen by a
+    // The tile passes as the isolation view draws them: the tint is compiled in, not chosen by a
     // push constant, because lavapipe runs both sides of such a branch for every pixel.
     TileToTargetIsolation,
     TileToAccumIsolation,
     Count
 };
-const char* stage_name(Stage stage);
-// The stage a view draws `stage` with: the isolation variant of a tile stage in the isolation
-// view, otherwise `stage` itself. Load (which prepares pipelines) and bind go through this alike.
-Stage view_variant(Stage stage, bool isolation);
+const char* host_pass_name(HostPass pass);
+// The pass a view draws `pass` with: the isolation variant of a tile pass in the isolation
+// view, otherwise `pass` itself. Load (which prepares pipelines) and bind go through this alike.
+HostPass view_variant(HostPass pass, bool isolation);
 
-// Process-wide (one per Renderer): the layout and samplers all host stages share, and their
-// pipelines per stage and colour format, kept in the PipelinePool so they survive scenes.
+// Process-wide (one per Renderer): the layout and samplers all host passes share, and their
+// pipelines per pass and colour format, kept in the PipelinePool so they survive scenes.
 class HostPipelines {
   public:
     static Result<std::unique_ptr<HostPipelines>> create(VulkanContext& context,
                                                          PipelinePool& pool);
     ~HostPipelines();
 
-    // Makes sure the stage's pipeline for this colour format exists: compiles its shaders and
+    // Makes sure the pass's pipeline for this colour format exists: compiles its shaders and
     // creates it on first request only. Called at load; never during a frame.
-    Result<void> ensure(Stage stage, VkFormat color_format);
-    // The stage's pipeline; asking for one that ensure() did not make is a host bug.
-    VkPipeline pipeline(Stage stage, VkFormat color_format) const;
+    Result<void> ensure(HostPass pass, VkFormat color_format);
+    // The pass's pipeline; asking for one that ensure() did not make is a host bug.
+    VkPipeline pipeline(HostPass pass, VkFormat color_format) const;
     VkPipelineLayout layout() const { return layout_; }
     VkSampler linear_sampler() const { return linear_sampler_; }
     VkSampler nearest_sampler() const { return nearest_sampler_; }
@@ -71,7 +71,7 @@ class HostPipelines {
         return one_to_one ? nearest_sampler_ : linear_sampler_;
     }
 
-    // Binding slots of the one push-descriptor set all stages share.
+    // Binding slots of the one push-descriptor set all host passes share.
     static constexpr uint32_t kPrimaryImage = 0;    // tile, floor target or accumulation
     static constexpr uint32_t kSecondaryImage = 1;  // output: the active floor's target
     static constexpr uint32_t kViolationBuffer = 2;
@@ -79,7 +79,7 @@ class HostPipelines {
   private:
     HostPipelines(VulkanContext& context, PipelinePool& pool) : context_(context), pool_(pool) {}
     Result<void> create_layout();
-    Result<VkPipeline> create_stage(Stage stage, VkFormat color_format, VkPipelineCache cache);
+    Result<VkPipeline> create_pass(HostPass pass, VkFormat color_format, VkPipelineCache cache);
 
     VulkanContext& context_;
     PipelinePool& pool_;
@@ -87,7 +87,7 @@ class HostPipelines {
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkSampler linear_sampler_ = VK_NULL_HANDLE;
     VkSampler nearest_sampler_ = VK_NULL_HANDLE;
-    std::map<std::pair<Stage, VkFormat>, VkPipeline> pipelines_;  // owned by the pool
+    std::map<std::pair<HostPass, VkFormat>, VkPipeline> pipelines_;  // owned by the pool
 };
 
 }  // namespace acetate

@@ -41,20 +41,18 @@ uint64_t Compositor::necessary_pixels(uint32_t active_floor) const {
             for (const EffectPassRuntime& pass : e->passes) {
                 if (pass.instance_count)
                     pixels += pass.instanced_pixels;  // its quads bound what it draws
-                else if (pass.output == "result")
+                else if (!pass.target)                // "result"
                     pixels += area;
                 else  // the effect's own target (a mip level, a mask): all of it
-                    pixels += uint64_t(e->targets.at(pass.output)->width()) *
-                              e->targets.at(pass.output)->height();
+                    pixels += uint64_t(pass.target->width()) * pass.target->height();
             }
         pixels += area;  // the composite over the accumulation
     }
     if (global_effects_enabled_)
         for (const auto& e : global_effects_)
             for (const EffectPassRuntime& pass : e->passes)
-                pixels += pass.output == "result" ? uint64_t(canvas.area())
-                                                  : uint64_t(e->targets.at(pass.output)->width()) *
-                                                        e->targets.at(pass.output)->height();
+                pixels += !pass.target ? uint64_t(canvas.area())
+                                       : uint64_t(pass.target->width()) * pass.target->height();
     return pixels;
 }
 

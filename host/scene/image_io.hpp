@@ -6,20 +6,10 @@
 #include <filesystem>
 #include <vector>
 
+#include "core/image_rgba.hpp"
 #include "core/result.hpp"
 
 namespace acetate {
-
-// A CPU image: RGBA float, row-major, y down (row 0 is the top).
-struct ImageRGBA {
-    uint32_t width = 0, height = 0;
-    std::vector<float> pixels;  // width * height * 4
-
-    ImageRGBA() = default;
-    ImageRGBA(uint32_t w, uint32_t h) : width(w), height(h), pixels(size_t(w) * h * 4, 0.0f) {}
-    float* at(uint32_t x, uint32_t y) { return &pixels[(size_t(y) * width + x) * 4]; }
-    const float* at(uint32_t x, uint32_t y) const { return &pixels[(size_t(y) * width + x) * 4]; }
-};
 
 enum class ImageRole {
     Colour,  // integer formats are sRGB-decoded; straight alpha is premultiplied after decoding;

@@ -6,8 +6,8 @@
 
 #include <string>
 
+#include "core/image_rgba.hpp"
 #include "core/result.hpp"
-#include "scene/image_io.hpp"
 
 namespace acetate {
 

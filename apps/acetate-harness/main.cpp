@@ -17,12 +17,12 @@
 
 #include "bless_command.hpp"
 #include "case_runner.hpp"
-#include "cli/registry_commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
 #include "core/strict_json.hpp"
 #include "fuzz.hpp"
 #include "registry.hpp"
+#include "registry_commands.hpp"
 #include "registry_location.hpp"
 #include "shard.hpp"
 #include "validate.hpp"

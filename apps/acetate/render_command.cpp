@@ -1,4 +1,4 @@
-#include "cli/render_command.hpp"
+#include "render_command.hpp"
 
 #include <fmt/format.h>
 
@@ -10,9 +10,9 @@
 #include <memory>
 #include <optional>
 
-#include "cli/output_paths.hpp"
 #include "core/atomic_file.hpp"
 #include "load_policy.hpp"
+#include "output_paths.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "registry_location.hpp"
 #include "render/compositor.hpp"

@@ -4,7 +4,7 @@
 #include <charconv>
 #include <cstdio>
 
-#include "cli/render_command.hpp"
+#include "render_command.hpp"
 
 int main(int argc, char** argv) {
     CLI::App app{"Acetate: a headless Vulkan compositor for layered 2D scenes"};

@@ -1,4 +1,4 @@
-#include "cli/output_paths.hpp"
+#include "output_paths.hpp"
 
 #include <fmt/format.h>
 #include <sys/stat.h>
