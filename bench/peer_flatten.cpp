@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/elapsed.hpp"
 #include "scene/image_compare.hpp"
 
 namespace acetate::bench {
@@ -47,11 +48,6 @@ TileFile tile_file(const TileDesc& tile) {
                       base != OIIO::TypeDesc::DOUBLE;
     }
     return out;
-}
-
-double milliseconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
 }
 
 // The --over chain alone, in this process, through the library call oiiotool makes

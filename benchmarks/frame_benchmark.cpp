@@ -370,12 +370,6 @@ class RawRenderer {
                                        0, count, writes);
     }
 
-    void push(const HostPassPushConstants& pc) {
-        vkCmdPushConstants(cmd_, pipelines_->layout(),
-                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
-                           &pc);
-    }
-
     void draw_floor(const FloorStep& step) {
         const VkRect2D scissor = vk_rect(step.scissor);
         vkCmdSetScissor(cmd_, 0, 1, &scissor);
@@ -384,15 +378,14 @@ class RawRenderer {
             // As draw_tiles: a 1:1 tile reads its texels through the nearest sampler.
             const VkSampler sampler = pipelines_->tile_sampler(tile.one_to_one);
             push_images(tile.texture->view(), tile.texture->view(), sampler, 1);
-            HostPassPushConstants pc;
-            pc.rect[0] = float(tile.rect.x);
-            pc.rect[1] = float(tile.rect.y);
-            pc.rect[2] = float(tile.rect.width);
-            pc.rect[3] = float(tile.rect.height);
-            pc.canvas[0] = float(scene_.width);
-            pc.canvas[1] = float(scene_.height);
-            pc.floor_index = step.floor;
-            push(pc);
+            TilePushConstants pc;
+            pc.tile_rect[0] = float(tile.rect.x);
+            pc.tile_rect[1] = float(tile.rect.y);
+            pc.tile_rect[2] = float(tile.rect.width);
+            pc.tile_rect[3] = float(tile.rect.height);
+            pc.canvas_size[0] = float(scene_.width);
+            pc.canvas_size[1] = float(scene_.height);
+            pipelines_->push(cmd_, pc);
             vkCmdDraw(cmd_, 4, 1, 0, 0);
         }
     }
@@ -446,12 +439,9 @@ class RawRenderer {
         vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS,
                           pipelines_->pipeline(HostPass::Output, format_));
         push_images(accumulation_.view(), accumulation_.view(), pipelines_->nearest_sampler(), 2);
-        HostPassPushConstants pc;
-        std::copy(scene_.background.begin(), scene_.background.end(), pc.tint);
-        pc.canvas[0] = float(scene_.width);
-        pc.canvas[1] = float(scene_.height);
-        pc.floor_index = 0;  // OutputView::Normal
-        push(pc);
+        OutputPushConstants pc;  // view 0: OutputView::Normal
+        std::copy(scene_.background.begin(), scene_.background.end(), pc.background);
+        pipelines_->push(cmd_, pc);
         vkCmdDraw(cmd_, 3, 1, 0, 0);
         vkCmdEndRendering(cmd_);
     }

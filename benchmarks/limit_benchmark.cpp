@@ -290,7 +290,7 @@ class LimitCase {
             begin_pass(cmd);
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g_bare_pipeline);
             push_texture(cmd, bare_texture_.view(), pipelines_->nearest_sampler());
-            push(cmd, canvas_push());
+            pipelines_->push(cmd, canvas_push());
             vkCmdDraw(cmd, 4, 1, 0, 0);
             vkCmdEndRendering(cmd);
         });
@@ -299,12 +299,13 @@ class LimitCase {
     static VkPipeline g_bare_pipeline;
 
   private:
-    HostPassPushConstants canvas_push() const {
-        HostPassPushConstants pc;
-        pc.rect[2] = float(kWidth);
-        pc.rect[3] = float(kHeight);
-        pc.canvas[0] = float(kWidth);
-        pc.canvas[1] = float(kHeight);
+    // tile.vert's constants for a quad over the whole canvas.
+    TilePushConstants canvas_push() const {
+        TilePushConstants pc;
+        pc.tile_rect[2] = float(kWidth);
+        pc.tile_rect[3] = float(kHeight);
+        pc.canvas_size[0] = float(kWidth);
+        pc.canvas_size[1] = float(kHeight);
         return pc;
     }
 
@@ -338,12 +339,6 @@ class LimitCase {
                                         0, 1, &write);
     }
 
-    void push(VkCommandBuffer cmd, const HostPassPushConstants& pc) {
-        vkCmdPushConstants(cmd, pipelines_->layout(),
-                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
-                           &pc);
-    }
-
     // What Compositor::draw_tiles records for this tile in the normal view.
     void record_tiled(VkCommandBuffer cmd) {
         const LoadedTile& tile = resources_->floors().at(0).tiles.at(0);
@@ -351,12 +346,12 @@ class LimitCase {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                           pipelines_->pipeline(HostPass::TileToAccum, kFormat));
         push_texture(cmd, tile.texture->view(), pipelines_->tile_sampler(tile.one_to_one));
-        HostPassPushConstants pc = canvas_push();
-        pc.rect[0] = float(tile.rect.x);
-        pc.rect[1] = float(tile.rect.y);
-        pc.rect[2] = float(tile.rect.width);
-        pc.rect[3] = float(tile.rect.height);
-        push(cmd, pc);
+        TilePushConstants pc = canvas_push();
+        pc.tile_rect[0] = float(tile.rect.x);
+        pc.tile_rect[1] = float(tile.rect.y);
+        pc.tile_rect[2] = float(tile.rect.width);
+        pc.tile_rect[3] = float(tile.rect.height);
+        pipelines_->push(cmd, pc);
         vkCmdDraw(cmd, 4, 1, 0, 0);
         vkCmdEndRendering(cmd);
     }

@@ -4,6 +4,13 @@
 // straight into the accumulation when it has no effects), composite with premultiplied "over"
 // gated by that stencil, then write the accumulation over the canvas background to the output.
 // Everything is created at load; render() allocates, loads and compiles nothing.
+//
+// Its files, one job each: compositor_load.cpp (load: effects, masks, targets, pipelines, the
+// planner's geometry), compositor_warm_up.cpp (every pipeline drawn once at load),
+// floor_recording.cpp (a frame's commands: floors, composites, global effects, the output),
+// compositor.cpp (render(), read-backs and what it holds). Its targets are a FrameTargets, its
+// output views are in output_view.hpp, the Vulkan commands it records in
+// vulkan/render_commands.hpp.
 
 #include <array>
 #include <memory>
@@ -14,7 +21,9 @@
 #include "render/effect_runtime.hpp"
 #include "render/frame_plan.hpp"
 #include "render/frame_stats.hpp"
+#include "render/frame_targets.hpp"
 #include "render/host_pipelines.hpp"
+#include "render/output_view.hpp"
 #include "render/scene_resources.hpp"
 #include "scene/scene.hpp"
 #include "vulkan/gpu_image.hpp"
@@ -24,22 +33,6 @@ namespace acetate {
 
 class VulkanContext;
 class Renderer;
-
-// What the output image shows: the picture, or a debug view (docs/design.md, L-debug-views).
-enum class OutputView {
-    Normal = 0,      // the composite over the canvas background
-    FloorAlpha = 1,  // the active floor's own alpha, grey
-    AccumAlpha = 2,  // the accumulation's alpha, grey
-    FloorRgb = 3,    // the active floor's rgb with alpha forced to 1
-    Violations = 4,  // red where the active floor has a <= 0 but rgb != 0 (or NaN/Inf)
-    Isolation = 5,   // each floor tinted its own colour
-};
-Result<OutputView> parse_view(const std::string& name);
-const char* to_string(OutputView view);
-// Views that read the active floor's own target (which then must exist).
-bool view_reads_floor_target(OutputView view);
-// The isolation tint of floor `index` (linear rgb, distinct for neighbouring floors).
-std::array<float, 3> isolation_tint(uint32_t index);
 
 struct CompositorOptions {
     VkFormat format = VK_FORMAT_R16G16B16A16_SFLOAT;  // targets and textures; or RGBA32F
@@ -143,28 +136,43 @@ class Compositor {
 
   private:
     Compositor(Renderer& renderer);
+    // Load (compositor_load.cpp).
     // Builds every effect instance; returns the mask composites it made (for the GPU upload).
     Result<SceneMasks> create_effects(const SceneDesc& scene);
     // Where a floor with coverage-expanding effects may change pixels (see create_effects).
     PixelRect expansion_area(const SceneDesc& scene, size_t floor) const;
-    void record_global_effects(VkCommandBuffer cmd, FrameStats& stats, double time);
-    VkPipeline host_pipeline(HostPass stage) const;
-    Result<void> create_targets(const SceneDesc& scene);
+    FrameTargetNeeds target_needs() const;
+    Result<void> ensure_host_pipelines();
+    void plan_geometry(const SceneDesc& scene);
+    void create_timer();
+    // compositor_warm_up.cpp
     Result<void> warm_pipelines();
+
+    // A frame's commands (floor_recording.cpp).
     void record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats, double time);
     // Steps [first, end): floors drawn directly (and skipped ones), in one rendering pass.
     void record_floors_direct(VkCommandBuffer cmd, const std::vector<FloorStep>& steps,
                               size_t first, size_t end, FrameStats& stats);
     void record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step, bool clear_all,
                                      double time, FloorFrameReport& report);
+    // The floor's effects in scene order, ping-ponging between the two floor targets; returns
+    // the target holding the result.
+    GpuImage* record_floor_effects(VkCommandBuffer cmd, const FloorStep& step,
+                                   const std::vector<PixelRect>* rects, bool expanding, double time,
+                                   FloorFrameReport& report);
+    void record_composite(VkCommandBuffer cmd, const FloorStep& step, GpuImage& floor,
+                          const std::vector<PixelRect>* rects, bool expanding,
+                          FloorFrameReport& report);
+    void record_global_effects(VkCommandBuffer cmd, FrameStats& stats, double time);
     void record_output(VkCommandBuffer cmd, FrameStats& stats);
-    void draw_tiles(VkCommandBuffer cmd, HostPass stage, uint32_t floor, const PixelRect& scissor,
+    void draw_tiles(VkCommandBuffer cmd, HostPass pass, uint32_t floor, const PixelRect& scissor,
                     FloorFrameReport& report);
-    void bind(VkCommandBuffer cmd, HostPass stage, VkImageView primary, VkImageView secondary,
+    // Binds the pass's pipeline (its isolation variant in that view) and its two images.
+    void bind(VkCommandBuffer cmd, HostPass pass, VkImageView primary, VkImageView secondary,
               VkSampler sampler);
     void set_scissor(VkCommandBuffer cmd, const PixelRect& rect);
-    bool needs_floor_target() const;
-    HostPass inject_stage() const;
+    bool expands(uint32_t floor) const;  // some effect of the floor expands its coverage
+    HostPass inject_pass() const;
 
     Renderer& renderer_;
     VulkanContext& context_;
@@ -175,16 +183,9 @@ class Compositor {
     HostPipelines* pipelines_ = nullptr;  // owned by the renderer, shared by scenes
     std::vector<std::vector<std::unique_ptr<EffectInstance>>> floor_effects_;  // per floor
     std::vector<std::unique_ptr<EffectInstance>> global_effects_;
-    EffectTargets effect_targets_;
-    GpuImage accumulation_;
-    std::optional<GpuImage> accumulation_pingpong_;  // only with global effects
-    GpuImage* final_accumulation_ = nullptr;         // what the output read last frame
-    GpuImage* viewed_floor_ = nullptr;               // the active floor's content, for views
-    GpuImage output_;
-    std::optional<GpuImage> floor_color_;
-    std::optional<GpuImage> floor_stencil_;
-    std::optional<GpuImage> floor_pingpong_;  // only when some floor has effects
-    GpuBuffer violations_;
+    FrameTargets targets_;
+    GpuImage* final_accumulation_ = nullptr;  // what the output read last frame
+    GpuImage* viewed_floor_ = nullptr;        // the active floor's content, for views
     std::vector<FloorGeometry> geometry_;     // what the planner works from (fixed at load)
     std::vector<PixelRect> expansion_areas_;  // per floor; empty unless it has expanding effects
     // Per floor with effects that do not expand: the union of its tiles' pixels as disjoint

@@ -11,6 +11,7 @@
 
 #include "render/effect_pipelines.hpp"
 #include "render/renderer.hpp"
+#include "vulkan/render_commands.hpp"
 #include "vulkan/vulkan_context.hpp"
 
 namespace acetate {
@@ -120,23 +121,8 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
             images[i] = {pipelines.sampler(), image->view(),
                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         }
-        output->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-
-        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        color.imageView = output->view();
-        color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        info.renderArea = {{int32_t(scissor.x0), int32_t(scissor.y0)},
-                           {uint32_t(scissor.x1 - scissor.x0), uint32_t(scissor.y1 - scissor.y0)}};
-        info.layerCount = 1;
-        info.colorAttachmentCount = 1;
-        info.pColorAttachments = &color;
-        vkCmdBeginRendering(cmd, &info);
-        VkViewport viewport{0, 0, ow, oh, 0, 1};
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &info.renderArea);
+        begin_rendering(cmd, scissor, {output, LoadOp::Keep});
+        set_viewport_and_scissor(cmd, output->width(), output->height(), scissor);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.pipeline);
 
         VkDescriptorBufferInfo frame{pass.uniforms.buffer(), 0, VK_WHOLE_SIZE};
@@ -183,8 +169,7 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
             vkCmdDraw(cmd, 4, io.warm_up ? 1 : pass.instance_count, 0, 0);
         } else if (per_rect) {
             for (const PixelRect& r : *io.result_rects) {
-                const VkRect2D rect{{int32_t(r.x0), int32_t(r.y0)},
-                                    {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0)}};
+                const VkRect2D rect = to_vk(r);
                 vkCmdSetScissor(cmd, 0, 1, &rect);
                 vkCmdDraw(cmd, 3, 1, 0, 0);
                 rect_pixels += r.area();

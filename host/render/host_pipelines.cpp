@@ -77,10 +77,12 @@ StageState state_of(HostPass stage) {
     }
 }
 
-// tile.frag's variants (see its header), inserted after its #version line: each is a shader of
-// its own.
+// The variants of tile.frag and composite.frag (see their headers), inserted after the
+// #version line: each is a shader of its own.
 const char* defines_of(HostPass stage) {
     switch (stage) {
+        case HostPass::CompositeByAlpha:
+            return "#define GATE_BY_ALPHA\n";
         case HostPass::TileToTarget:
             return "#define KEEP_COVERAGE\n";
         case HostPass::TileToTargetIsolation:
@@ -146,7 +148,7 @@ Result<void> HostPipelines::create_layout() {
     ACETATE_VK(vkCreateDescriptorSetLayout(device, &set_info, nullptr, &set_layout_));
 
     VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                              sizeof(HostPassPushConstants)};
+                              kHostPushConstantBytes};
     VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layout_info.setLayoutCount = 1;
     layout_info.pSetLayouts = &set_layout_;

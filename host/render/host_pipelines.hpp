@@ -18,15 +18,26 @@ namespace acetate {
 class VulkanContext;
 class PipelinePool;
 
-// Push constants shared by every host pass (48 bytes; matches the GLSL `Push` blocks).
-struct HostPassPushConstants {
-    float rect[4] = {0, 0, 0, 0};  // tile rect in scene pixels
-    float tint[4] = {0, 0, 0, 0};  // isolation tint, or the fill colour, or the background
-    float canvas[2] = {0, 0};      // canvas size in pixels
-    uint32_t floor_index = 0;      // violation counter slot; output: the view
-    uint32_t mode = 0;             // composite: gate mode (tile passes: unused, see HostPass)
+// Each host pass's push constants, field for field its shaders' `Push` block (GLSL std430
+// offsets: the vec4s first). The layout has one range, as large as the largest of them.
+struct TilePushConstants {         // tile.vert, tile.frag
+    float tile_rect[4] = {};       // x, y, width, height in scene pixels
+    float isolation_tint[4] = {};  // the floor's tint (rgb); only the isolation variants read it
+    float canvas_size[2] = {};     // in pixels
 };
-static_assert(sizeof(HostPassPushConstants) == 48);
+struct CompositePushConstants {   // composite.frag
+    uint32_t violation_slot = 0;  // the floor's counter in the violation buffer
+};
+struct InjectPushConstants {  // inject.frag
+    float colour[4] = {};     // what the test hook paints (premultiplied)
+};
+struct OutputPushConstants {   // output.frag
+    float background[4] = {};  // the canvas background, straight alpha, linear
+    uint32_t view = 0;         // OutputView (render/output_view.hpp)
+};
+static_assert(sizeof(TilePushConstants) == 40 && sizeof(CompositePushConstants) == 4 &&
+              sizeof(InjectPushConstants) == 16 && sizeof(OutputPushConstants) == 20);
+inline constexpr uint32_t kHostPushConstantBytes = sizeof(TilePushConstants);
 
 enum class HostPass {
     TileToTarget,      // tile -> floor target; over blend; writes stencil = 1 where it covers
@@ -61,6 +72,14 @@ class HostPipelines {
     // The pass's pipeline; asking for one that ensure() did not make is a host bug.
     VkPipeline pipeline(HostPass pass, VkFormat color_format) const;
     VkPipelineLayout layout() const { return layout_; }
+    // Records a pass's push constants (one of the structs above).
+    template <typename PushConstants>
+    void push(VkCommandBuffer cmd, const PushConstants& constants) const {
+        static_assert(sizeof(PushConstants) <= kHostPushConstantBytes &&
+                      sizeof(PushConstants) % 4 == 0);
+        vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                           0, sizeof(PushConstants), &constants);
+    }
     VkSampler linear_sampler() const { return linear_sampler_; }
     VkSampler nearest_sampler() const { return nearest_sampler_; }
     // The sampler a tile is drawn with. One drawn 1:1 on whole pixels samples nearest, which at

@@ -1,11 +1,8 @@
 #version 450
 // Accumulation -> output image, or one of the debug views (docs/design.md, L-debug-views).
-layout(push_constant) uniform Push {
-    vec4 unused;
-    vec4 background;    // straight-alpha linear background colour
-    vec2 canvas;
-    uint view;          // see OutputView in render/compositor.hpp
-    uint pad;
+layout(push_constant) uniform Push {  // OutputPushConstants (render/host_pipelines.hpp)
+    vec4 background;  // straight-alpha linear background colour
+    uint view;        // OutputView (render/output_view.hpp)
 } pc;
 layout(set = 0, binding = 0) uniform sampler2D accumulation;
 layout(set = 0, binding = 1) uniform sampler2D active_floor;  // the active floor's own target

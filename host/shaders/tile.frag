@@ -10,12 +10,10 @@
 //   ISOLATION      the isolation view's tint.
 // Either way no colour without coverage enters a floor (tile texels breaking that are counted
 // at load).
-layout(push_constant) uniform Push {
-    vec4 rect;
-    vec4 tint;          // isolation tint (rgb)
-    vec2 canvas;
-    uint floor_index;
-    uint mode;          // unused here
+layout(push_constant) uniform Push {  // TilePushConstants (render/host_pipelines.hpp)
+    vec4 tile_rect;
+    vec4 isolation_tint;  // the floor's tint (rgb)
+    vec2 canvas_size;
 } pc;
 layout(set = 0, binding = 0) uniform sampler2D tile;
 layout(location = 0) in vec2 uv;
@@ -31,7 +29,7 @@ void main() {
 #ifdef ISOLATION
     // Isolation view: keep the tile's shape and shading, replace its hue with the floor's.
     float luma = dot(c.rgb / c.a, vec3(0.2126, 0.7152, 0.0722));
-    c.rgb = pc.tint.rgb * c.a * (0.35 + 0.65 * clamp(luma, 0.0, 1.0));
+    c.rgb = pc.isolation_tint.rgb * c.a * (0.35 + 0.65 * clamp(luma, 0.0, 1.0));
 #endif
 #ifdef KEEP_COVERAGE
     color = c;

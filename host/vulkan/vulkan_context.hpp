@@ -32,6 +32,13 @@ struct ResourceCounters {
     uint64_t shaders_compiled = 0;
     uint64_t pipelines_created = 0;
 };
+// What a load or a frame allocated, loaded or compiled: the counters' growth since `before`.
+inline ResourceCounters operator-(const ResourceCounters& after, const ResourceCounters& before) {
+    return {after.images_loaded - before.images_loaded,
+            after.targets_allocated - before.targets_allocated,
+            after.shaders_compiled - before.shaders_compiled,
+            after.pipelines_created - before.pipelines_created};
+}
 
 class VulkanContext {
   public:
