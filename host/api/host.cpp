@@ -1,51 +1,104 @@
 // The embedding API (acetate/host/host.hpp) on the host's internals: the Vulkan context, the
-// renderer (plugin loader, pipeline pool) and one Compositor per scene. This file only
-// translates: options in, statistics and errors out; the work is the compositor's.
-#include "acetate/host/host.hpp"
-
+// renderer (plugin loader, pipeline pool) and one Compositor per scene. This file is the Host
+// (scene.cpp the Scene); both only translate: options in, statistics and errors out.
 #include <fmt/format.h>
 
-#include <cmath>
+#include <algorithm>
 #include <cstdio>
-#include <limits>
 
+#include "api/host_internal.hpp"
 #include "load_policy.hpp"
-#include "render/compositor.hpp"
-#include "render/renderer.hpp"
-#include "scene/image_io.hpp"
-#include "scene/scene.hpp"
+#include "registry_location.hpp"
 #include "vulkan/pipeline_cache_file.hpp"
-#include "vulkan/vulkan_context.hpp"
 
 namespace acetate::host {
-
-// The device and the renderer outlive every scene loaded on them: each Scene holds this.
-struct Host::State {
-    std::unique_ptr<VulkanContext> context;
-    std::unique_ptr<Renderer> renderer;
-    std::function<void(const std::string&)> warn;
-};
-
-struct Scene::Loaded {
-    std::shared_ptr<Host::State> host;
-    SceneDesc desc;
-    std::unique_ptr<Compositor> compositor;
-    LoadStatistics load;
-    uint32_t active_floor = 0;
-    double time = 0;
-    bool rendered = false;
-};
-
 namespace {
 
-Error error_of(const acetate::Error& e) {
-    return Error{e.message};
+bool names_plugins(const SceneDesc& scene) {
+    return !scene.global_effects.empty() ||
+           std::any_of(scene.floors.begin(), scene.floors.end(),
+                       [](const FloorDesc& f) { return !f.effects.empty(); });
+}
+
+acetate::OutputView internal_view(View view) {
+    return acetate::OutputView(int(view));  // the same order (static_asserts below)
+}
+static_assert(int(View::Isolation) == int(acetate::OutputView::Isolation) &&
+              int(View::FloorRgb) == int(acetate::OutputView::FloorRgb));
+
+Result<std::unique_ptr<Scene::Loaded>> load(const std::shared_ptr<Host::State>& host,
+                                            acetate::Result<SceneDesc> parsed,
+                                            const SceneOptions& scene_options) {
+    if (!parsed) return error_of(parsed.error());
+    auto loaded = std::make_unique<Scene::Loaded>();
+    loaded->host = host;
+    loaded->desc = std::move(parsed.value());
+    CompositorOptions options;  // every optimisation on
+    options.view = internal_view(scene_options.view);
+    options.format = scene_options.precision == Precision::Float32 ? VK_FORMAT_R32G32B32A32_SFLOAT
+                                                                   : VK_FORMAT_R16G16B16A16_SFLOAT;
+    auto compositor = Compositor::load(*host->renderer, loaded->desc, options);
+    if (!compositor) return error_of(compositor.error());
+    loaded->compositor = std::move(compositor.value());
+    const LoadStats& s = loaded->compositor->load_stats();
+    loaded->load = {s.milliseconds,     s.images_loaded,     s.targets_allocated,
+                    s.shaders_compiled, s.pipelines_created, s.tile_texel_violations};
+    if (s.tile_texel_violations)
+        host->warn(
+            fmt::format("warning: {}: {} tile texels have colour at alpha 0 (or NaN/Inf); "
+                        "they are dropped",
+                        loaded->desc.file.string(), s.tile_texel_violations));
+    loaded->active_floor = loaded->desc.active_floor;
+    return loaded;
 }
 
 }  // namespace
 
+Result<View> parse_view(const std::string& name) {
+    auto view = acetate::parse_view(name);
+    if (!view) return error_of(view.error());
+    return View(int(view.value()));
+}
+
+const char* view_name(View view) {
+    return acetate::to_string(internal_view(view));
+}
+
 Host::Host(std::shared_ptr<State> state) : state_(std::move(state)) {}
 Host::~Host() = default;
+
+std::filesystem::path Host::registry_file(const HostOptions& options) {
+    return registry_path(options.registry);
+}
+
+std::filesystem::path Host::allowed_signers_file(const HostOptions& options) {
+    return allowed_signers_path(options.allowed_signers);
+}
+
+Result<SceneInfo> Host::inspect_scene_file(const std::filesystem::path& file) {
+    auto scene = parse_scene_file(file);
+    if (!scene) return error_of(scene.error());
+    SceneInfo info;
+    info.file = scene->file;
+    info.width = scene->width;
+    info.height = scene->height;
+    info.active_floor = scene->active_floor;
+    info.names_plugins = names_plugins(scene.value());
+    info.inputs.push_back({scene->file, "scene"});
+    for (size_t f = 0; f < scene->floors.size(); ++f) {
+        const FloorDesc& floor = scene->floors[f];
+        info.floor_names.push_back(floor.name);
+        for (size_t t = 0; t < floor.tiles.size(); ++t) {
+            const TileDesc& tile = floor.tiles[t];
+            const std::string where =
+                fmt::format("{}: floors[{}].tiles[{}]", scene->file.string(), f, t);
+            info.inputs.push_back({tile.image, where + ".image"});
+            for (const auto& [kind, mask] : tile.masks)
+                info.inputs.push_back({mask, fmt::format("{}.masks.{}", where, kind)});
+        }
+    }
+    return info;
+}
 
 Result<std::unique_ptr<Host>> Host::create(const HostOptions& options) {
     auto state = std::make_shared<State>();
@@ -53,14 +106,18 @@ Result<std::unique_ptr<Host>> Host::create(const HostOptions& options) {
         std::fprintf(stderr, "acetate: %s\n", line.c_str());
     };
     // The policy first: a malformed registry is the caller's input, found before the device.
-    LoadPolicyOptions policy_options;
-    policy_options.registry = options.registry;
-    policy_options.allowed_signers = options.allowed_signers;
-    policy_options.allow_unvalidated = options.allow_unvalidated;
-    policy_options.allow_hint = "set HostOptions::allow_unvalidated";
-    policy_options.warn = state->warn;
-    auto policy = LoadPolicy::open(std::move(policy_options));
-    if (!policy) return error_of(policy.error());
+    std::optional<LoadPolicy> policy;
+    if (options.load_plugins) {
+        LoadPolicyOptions policy_options;
+        policy_options.registry = options.registry;
+        policy_options.allowed_signers = options.allowed_signers;
+        policy_options.allow_unvalidated = options.allow_unvalidated;
+        policy_options.allow_hint = options.allow_unvalidated_hint;
+        policy_options.warn = state->warn;
+        auto opened = LoadPolicy::open(std::move(policy_options));
+        if (!opened) return error_of(opened.error());
+        policy = std::move(opened.value());
+    }
 
     ContextOptions context_options = ContextOptions::from_environment();
     if (!options.device.empty()) context_options.device_selector = options.device;
@@ -77,10 +134,21 @@ Result<std::unique_ptr<Host>> Host::create(const HostOptions& options) {
     auto renderer = Renderer::create(*state->context, renderer_options);
     if (!renderer) return error_of(renderer.error());
     state->renderer = std::move(renderer.value());
-    state->renderer->plugins().set_admission(
-        [policy = std::move(policy.value())](
-            const std::string& id, const std::filesystem::path& file,
-            const std::filesystem::path& contents) { return policy.admit(id, file, contents); });
+    if (policy)
+        state->renderer->plugins().set_admission(
+            [policy = std::move(*policy)](const std::string& id, const std::filesystem::path& file,
+                                          const std::filesystem::path& contents) {
+                return policy.admit(id, file, contents);
+            });
+    else
+        state->renderer->plugins().set_admission(
+            [](const std::string& id, const std::filesystem::path& file,
+               const std::filesystem::path&) -> acetate::Result<void> {
+                return make_error(ErrorCode::InvalidInput,
+                                  fmt::format("plugin {} ({}): this host loads no plugins "
+                                              "(HostOptions::load_plugins is off)",
+                                              id, file.string()));
+            });
     return std::unique_ptr<Host>(new Host(std::move(state)));
 }
 
@@ -94,137 +162,36 @@ Result<void> Host::save_pipeline_cache() {
     return {};
 }
 
-namespace {
-
-Result<std::unique_ptr<Scene::Loaded>> load(const std::shared_ptr<Host::State>& host,
-                                            acetate::Result<SceneDesc> parsed) {
-    if (!parsed) return error_of(parsed.error());
-    auto loaded = std::make_unique<Scene::Loaded>();
-    loaded->host = host;
-    loaded->desc = std::move(parsed.value());
-    CompositorOptions options;  // the picture, half-float targets, every optimisation
-    auto compositor = Compositor::load(*host->renderer, loaded->desc, options);
-    if (!compositor) return error_of(compositor.error());
-    loaded->compositor = std::move(compositor.value());
-    const LoadStats& s = loaded->compositor->load_stats();
-    loaded->load = {s.milliseconds, s.images_loaded, s.targets_allocated, s.shaders_compiled,
-                    s.pipelines_created};
-    if (s.tile_texel_violations)
-        host->warn(
-            fmt::format("warning: {}: {} tile texels have colour at alpha 0 (or NaN/Inf); "
-                        "they are dropped",
-                        loaded->desc.file.string(), s.tile_texel_violations));
-    loaded->active_floor = loaded->desc.active_floor;
-    return loaded;
+std::string Host::pipeline_cache_warning() const {
+    return state_->renderer->pipeline_cache_warning();
 }
 
-}  // namespace
+uint32_t Host::plugins_loaded() const {
+    return uint32_t(state_->renderer->plugins().loaded_count());
+}
 
-Result<std::unique_ptr<Scene>> Host::load_scene_file(const std::filesystem::path& file) {
-    auto loaded = load(state_, parse_scene_file(file));
+uint32_t Host::pipelines_in_pool() const {
+    return uint32_t(state_->renderer->pool().pipeline_count());
+}
+
+uint32_t Host::validation_messages() const {
+    return uint32_t(state_->context->validation_messages().size());
+}
+
+Result<std::unique_ptr<Scene>> Host::load_scene_file(const std::filesystem::path& file,
+                                                     const SceneOptions& options) {
+    auto loaded = load(state_, parse_scene_file(file), options);
     if (!loaded) return loaded.error();
     return std::unique_ptr<Scene>(new Scene(std::move(loaded.value())));
 }
 
 Result<std::unique_ptr<Scene>> Host::load_scene_text(const std::string& json,
                                                      const std::filesystem::path& base_directory,
-                                                     const std::string& name) {
-    auto loaded = load(state_, parse_scene_text(json, base_directory / name));
+                                                     const std::string& name,
+                                                     const SceneOptions& options) {
+    auto loaded = load(state_, parse_scene_text(json, base_directory / name), options);
     if (!loaded) return loaded.error();
     return std::unique_ptr<Scene>(new Scene(std::move(loaded.value())));
-}
-
-Scene::Scene(std::unique_ptr<Loaded> loaded) : loaded_(std::move(loaded)) {}
-// The compositor goes first: it uses the renderer and device the Loaded keeps alive.
-Scene::~Scene() {
-    if (loaded_) loaded_->compositor.reset();
-}
-
-uint32_t Scene::width() const {
-    return loaded_->desc.width;
-}
-uint32_t Scene::height() const {
-    return loaded_->desc.height;
-}
-uint32_t Scene::floor_count() const {
-    return uint32_t(loaded_->desc.floors.size());
-}
-std::string Scene::floor_name(uint32_t floor) const {
-    return floor < floor_count() ? loaded_->desc.floors[floor].name : std::string();
-}
-uint32_t Scene::active_floor() const {
-    return loaded_->active_floor;
-}
-double Scene::time() const {
-    return loaded_->time;
-}
-const LoadStatistics& Scene::load_statistics() const {
-    return loaded_->load;
-}
-
-Result<void> Scene::set_active_floor(uint32_t floor) {
-    if (floor >= floor_count())
-        return Error{fmt::format("{}: floor {} does not exist (floors 0..{})",
-                                 loaded_->desc.file.string(), floor, floor_count() - 1)};
-    loaded_->active_floor = floor;
-    return {};
-}
-
-Result<void> Scene::set_time(double seconds) {
-    if (!std::isfinite(seconds) || std::abs(seconds) > double(std::numeric_limits<float>::max()))
-        return Error{
-            fmt::format("time: expected a finite number of seconds within the 32-bit "
-                        "float range, got {}",
-                        seconds)};
-    loaded_->time = seconds;
-    return {};
-}
-
-Result<FrameStatistics> Scene::render() {
-    VulkanContext& context = *loaded_->host->context;
-    const size_t messages_before = context.validation_messages().size();
-    auto stats = loaded_->compositor->render(loaded_->active_floor, loaded_->time);
-    if (!stats) return error_of(stats.error());
-    if (const size_t after = context.validation_messages().size(); after != messages_before)
-        return Error{
-            fmt::format("{}: {} Vulkan validation messages during the frame, the first: {}",
-                        loaded_->desc.file.string(), after - messages_before,
-                        context.validation_messages()[messages_before])};
-    loaded_->rendered = true;
-    FrameStatistics out;
-    out.active_floor = stats->active_floor;
-    out.time = loaded_->time;
-    out.milliseconds = stats->milliseconds;
-    out.passes = stats->passes;
-    out.pixels_shaded = stats->pixels_shaded;
-    out.violations = stats->violations;
-    out.images_loaded = stats->images_loaded;
-    out.targets_allocated = stats->targets_allocated;
-    out.shaders_compiled = stats->shaders_compiled;
-    out.pipelines_created = stats->pipelines_created;
-    return out;
-}
-
-Result<Image> Scene::read_frame() {
-    if (!loaded_->rendered)
-        return Error{
-            fmt::format("{}: no frame rendered yet (render() first)", loaded_->desc.file.string())};
-    auto pixels = loaded_->compositor->read_output();
-    if (!pixels) return error_of(pixels.error());
-    return Image{pixels->width, pixels->height, std::move(pixels->pixels)};
-}
-
-Result<void> Scene::write_frame(const std::filesystem::path& file) {
-    const std::string ext = file.extension().string();
-    if (ext != ".exr" && ext != ".png")
-        return Error{fmt::format("{}: a frame is written as .exr or .png", file.string())};
-    if (!loaded_->rendered)
-        return Error{
-            fmt::format("{}: no frame rendered yet (render() first)", loaded_->desc.file.string())};
-    auto pixels = loaded_->compositor->read_output();
-    if (!pixels) return error_of(pixels.error());
-    if (auto saved = save_image(file, pixels.value()); !saved) return error_of(saved.error());
-    return {};
 }
 
 }  // namespace acetate::host

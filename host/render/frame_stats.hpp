@@ -1,9 +1,8 @@
 #pragma once
-// What a load and each frame did, in numbers a test or a person can check: `--stats` writes
-// these as JSON.
+// What a load and each frame did, in numbers a test or a person can check (the embedding API
+// hands them on as FrameStatistics and LoadStatistics; `acetate render --stats` writes them).
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,9 +60,5 @@ struct TargetInfo {
     uint32_t width = 0, height = 0;
     uint64_t bytes = 0;
 };
-
-nlohmann::json to_json(const FrameStats& stats);
-nlohmann::json to_json(const LoadStats& stats);
-nlohmann::json to_json(const TargetInfo& target);
 
 }  // namespace acetate

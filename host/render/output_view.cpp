@@ -10,7 +10,7 @@ Result<OutputView> parse_view(const std::string& name) {
     for (int v = 0; v <= int(OutputView::Isolation); ++v)
         if (name == to_string(OutputView(v))) return OutputView(v);
     return make_error(ErrorCode::InvalidInput,
-                      fmt::format("--view: unknown view \"{}\"; expected normal, floor-alpha, "
+                      fmt::format("unknown view \"{}\"; expected normal, floor-alpha, "
                                   "accum-alpha, floor-rgb, violations or isolation",
                                   name));
 }

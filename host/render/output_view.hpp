@@ -18,7 +18,7 @@ enum class OutputView {
     Violations = 4,  // red where the active floor has a <= 0 but rgb != 0 (or NaN/Inf)
     Isolation = 5,   // each floor tinted its own colour
 };
-// "normal", "floor-alpha", ...; anything else is InvalidInput naming --view and the choices.
+// "normal", "floor-alpha", ...; anything else is InvalidInput listing the choices.
 Result<OutputView> parse_view(const std::string& name);
 const char* to_string(OutputView view);
 // Views that read the active floor's own target (which then must exist).

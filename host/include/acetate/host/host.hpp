@@ -53,8 +53,55 @@ struct HostOptions {
     // Loads plugins the registry does not hold VALIDATED, each with one warning. For
     // development only: nothing vouches for what such a plugin does.
     bool allow_unvalidated = false;
+    // How a refusal tells the user to load the plugin anyway (after "or "): a program names
+    // its own switch here ("pass --allow-unvalidated").
+    std::string allow_unvalidated_hint = "set HostOptions::allow_unvalidated";
+    // False: no plugin is loaded at all and the registry is not read (a malformed registry
+    // then does not matter); a scene naming a plugin fails to load, naming its field.
+    bool load_plugins = true;
     // Where warnings go, one line each (no newline); default: standard error.
     std::function<void(const std::string&)> on_warning;
+};
+
+// What a scene's frame shows: the picture, or a debug view of its floors (docs/design.md,
+// L-debug-views).
+enum class View {
+    Normal,      // the composite over the canvas background
+    FloorAlpha,  // the active floor's own alpha, grey
+    AccumAlpha,  // the composite's alpha, grey
+    FloorRgb,    // the active floor's colour with alpha forced to 1
+    Violations,  // red where the active floor has colour at alpha 0 (or NaN/Inf)
+    Isolation,   // each floor tinted its own colour
+};
+// The view named "normal", "floor-alpha", "accum-alpha", "floor-rgb", "violations" or
+// "isolation"; any other name fails, listing these.
+Result<View> parse_view(const std::string& name);
+const char* view_name(View view);
+
+// The format of a scene's targets and textures: RGBA in 16-bit or 32-bit float.
+enum class Precision { Float16, Float32 };
+
+// How a scene is loaded. The defaults give the picture at half-float precision.
+struct SceneOptions {
+    View view = View::Normal;
+    Precision precision = Precision::Float16;
+};
+
+// A scene file read and checked without a device (Host::inspect_scene_file): enough for a
+// program to check its own arguments, and what it may not overwrite, before it starts one.
+struct SceneInfo {
+    std::filesystem::path file;
+    uint32_t width = 0, height = 0;
+    std::vector<std::string> floor_names;  // bottom to top
+    uint32_t active_floor = 0;             // the scene's own
+    bool names_plugins = false;            // some floor or global effect names a plugin
+    // Every file loading it reads, with the field naming it ("scene.json: floors[0].tiles[1]
+    // .image", "....masks.water"); the scene file itself first, named "scene".
+    struct Input {
+        std::filesystem::path file;
+        std::string field;
+    };
+    std::vector<Input> inputs;
 };
 
 // A frame read back: premultiplied, linear RGBA, 32-bit float, rows top to bottom.
@@ -66,6 +113,27 @@ struct Image {
 struct LoadStatistics {
     double milliseconds = 0;
     uint64_t images_loaded = 0, targets_allocated = 0, shaders_compiled = 0, pipelines_created = 0;
+    // Tile texels with colour at alpha 0 (or NaN/Inf): dropped when drawn, and warned about.
+    uint64_t tile_texel_violations = 0;
+};
+
+// One step of a frame: a floor, or the global effects on the composite.
+struct StepStatistics {
+    uint32_t floor = 0;  // UINT32_MAX for the global effects
+    std::string path;    // "skipped", "direct", "through-target" or "global"
+    std::string why;     // why the frame's plan chose that path
+    int64_t x = 0, y = 0, width = 0, height = 0;  // the scissor, scene pixels
+    uint32_t passes = 0;
+    uint64_t pixels_shaded = 0;
+    uint64_t violations = 0;
+};
+
+// A render target or texture a loaded scene holds on the device.
+struct ImageInfo {
+    std::string name;    // "accumulation", "floor.color", "acetate.bloom.level1", a tile's file
+    std::string format;  // "rgba16f", ...
+    uint32_t width = 0, height = 0;
+    uint64_t bytes = 0;
 };
 
 struct FrameStatistics {
@@ -77,6 +145,8 @@ struct FrameStatistics {
     uint64_t violations = 0;     // pixels reaching the composite with colour at alpha 0, or NaN
     // Work done during the frame: 0 for all four, always (everything is made at load).
     uint64_t images_loaded = 0, targets_allocated = 0, shaders_compiled = 0, pipelines_created = 0;
+    std::vector<StepStatistics> floors;            // floors 0..active_floor, bottom to top
+    std::optional<StepStatistics> global_effects;  // when the scene has any
 };
 
 class Scene;
@@ -94,18 +164,35 @@ class Host {
     // The device in use, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
     std::string device_name() const;
 
+    // The files the load policy reads for these options (whether or not they exist): what a
+    // program must not overwrite. Neither needs a Host.
+    static std::filesystem::path registry_file(const HostOptions& options);
+    static std::filesystem::path allowed_signers_file(const HostOptions& options);
+    // Reads and checks a scene file as load_scene_file does, without a device: its errors are
+    // the same lines. Loads no image and no plugin.
+    static Result<SceneInfo> inspect_scene_file(const std::filesystem::path& file);
+
     // Loads a scene file (docs/scene-format.md): its plugins (each through the load policy),
     // images and masks; allocates its targets; compiles and warms every pipeline. Errors name
     // the file and the JSON field, or the plugin and why it was refused.
-    Result<std::unique_ptr<Scene>> load_scene_file(const std::filesystem::path& file);
+    Result<std::unique_ptr<Scene>> load_scene_file(const std::filesystem::path& file,
+                                                   const SceneOptions& options = {});
     // The same from a description in memory: `json` is the scene file's text; relative image
     // paths are taken from `base_directory`; messages name the scene `name`.
     Result<std::unique_ptr<Scene>> load_scene_text(const std::string& json,
                                                    const std::filesystem::path& base_directory,
-                                                   const std::string& name = "scene.json");
+                                                   const std::string& name = "scene.json",
+                                                   const SceneOptions& options = {});
 
     // Writes the pipeline cache (with HostOptions::pipeline_cache), atomically.
     Result<void> save_pipeline_cache();
+    // Why the pipeline cache file was not used at start-up ("" when it was, or is off).
+    std::string pipeline_cache_warning() const;
+    // Plugins loaded so far (each once per process, shared by every scene) and pipelines made.
+    uint32_t plugins_loaded() const;
+    uint32_t pipelines_in_pool() const;
+    // Messages the Vulkan validation layer has reported since create() (with validation on).
+    uint32_t validation_messages() const;
 
     struct State;  // what a Host and its Scenes share
 
@@ -147,6 +234,10 @@ class Scene {
     Result<void> write_frame(const std::filesystem::path& file);
 
     const LoadStatistics& load_statistics() const;
+    // What the scene holds on the device: its render targets, and every image (targets, tile
+    // textures and masks).
+    std::vector<ImageInfo> render_targets() const;
+    std::vector<ImageInfo> images_held() const;
 
     struct Loaded;  // the loaded scene behind it
 

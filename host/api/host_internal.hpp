@@ -1,0 +1,39 @@
+#pragma once
+// What the embedding API's two files share (host.cpp: Host; scene.cpp: Scene): the state
+// behind a Host and a Scene, and errors translated to the API's own.
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "acetate/host/host.hpp"
+#include "core/result.hpp"
+#include "render/compositor.hpp"
+#include "render/renderer.hpp"
+#include "scene/scene.hpp"
+#include "vulkan/vulkan_context.hpp"
+
+namespace acetate::host {
+
+// The device and the renderer outlive every scene loaded on them: each Scene holds this.
+struct Host::State {
+    std::unique_ptr<VulkanContext> context;
+    std::unique_ptr<Renderer> renderer;
+    std::function<void(const std::string&)> warn;
+};
+
+struct Scene::Loaded {
+    std::shared_ptr<Host::State> host;
+    SceneDesc desc;
+    std::unique_ptr<Compositor> compositor;
+    LoadStatistics load;
+    uint32_t active_floor = 0;
+    double time = 0;
+    bool rendered = false;
+};
+
+inline Error error_of(const acetate::Error& e) {
+    return Error{e.message};
+}
+
+}  // namespace acetate::host
