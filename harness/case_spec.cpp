@@ -6,6 +6,8 @@
 #include <cmath>
 #include <random>
 
+#include "core/json_fields.hpp"
+
 namespace acetate::harness {
 namespace {
 
@@ -79,34 +81,54 @@ json to_json(const PluginInfo& info) {
             {"reference_scenes", scenes}};
 }
 
-Result<PluginInfo> plugin_info_from_json(const json& j, std::string_view name) {
-    try {
-        PluginInfo info;
-        info.file = j.at("file").get<std::string>();
-        info.id = j.at("id").get<std::string>();
-        info.version = j.at("version").get<std::string>();
-        info.display_name = j.at("display_name").get<std::string>();
-        info.scope = j.at("scope").get<std::string>();
-        info.coverage = j.at("coverage").get<std::string>();
-        info.masks = j.at("masks").get<std::vector<std::string>>();
-        for (const json& p : j.at("params"))
-            info.params.push_back({p.at("name").get<std::string>(), p.at("type").get<std::string>(),
-                                   p.at("default").get<float>(), p.at("min").get<float>(),
-                                   p.at("max").get<float>(), p.at("components").get<uint32_t>()});
-        info.hidden_params = j.at("hidden_params").get<std::vector<std::string>>();
-        info.abi = j.at("abi").get<std::string>();
-        info.presets = j.at("presets").get<std::vector<std::string>>();
-        info.source_digest = j.at("source_digest").get<std::string>();
-        info.binary_sha256 = j.at("binary_sha256").get<std::string>();
-        for (const json& r : j.value("reference_scenes", json::array()))
-            info.reference_scenes.push_back(
-                {r.at("name").get<std::string>(), r.at("file").get<std::string>(),
-                 r.at("digest").get<std::string>(), r.at("width").get<uint32_t>(),
-                 r.at("height").get<uint32_t>()});
-        return info;
-    } catch (const json::exception& e) {
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}", name, e.what()));
+PluginInfo read_plugin_info(const json& j, const std::string& path) {
+    using namespace json_fields;
+    expect_object(j, path,
+                  {"file", "id", "version", "display_name", "scope", "coverage", "masks", "params",
+                   "hidden_params", "abi", "presets", "source_digest", "binary_sha256"},
+                  {"reference_scenes"});
+    PluginInfo info;
+    info.file = text(j, path, "file");
+    info.id = text(j, path, "id");
+    info.version = text(j, path, "version");
+    info.display_name = text(j, path, "display_name");
+    info.scope = text(j, path, "scope");
+    info.coverage = text(j, path, "coverage");
+    info.masks = texts(j, path, "masks");
+    const std::string params_path = field(path, "params");
+    const json& params = array(j.at("params"), params_path);
+    for (size_t i = 0; i < params.size(); ++i) {
+        const json& p = params[i];
+        const std::string at = element(params_path, i);
+        expect_object(p, at, {"name", "type", "default", "min", "max", "components"});
+        info.params.push_back({text(p, at, "name"), text(p, at, "type"),
+                               finite_float(p, at, "default"), finite_float(p, at, "min"),
+                               finite_float(p, at, "max"),
+                               uint32_t(unsigned_integer(p, at, "components", 4))});
     }
+    info.hidden_params = texts(j, path, "hidden_params");
+    info.abi = text(j, path, "abi");
+    info.presets = texts(j, path, "presets");
+    info.source_digest = text(j, path, "source_digest");
+    info.binary_sha256 = text(j, path, "binary_sha256");
+    if (const json* scenes = optional(j, "reference_scenes")) {
+        const std::string scenes_path = field(path, "reference_scenes");
+        array(*scenes, scenes_path);
+        for (size_t i = 0; i < scenes->size(); ++i) {
+            const json& r = (*scenes)[i];
+            const std::string at = element(scenes_path, i);
+            expect_object(r, at, {"name", "file", "digest", "width", "height"});
+            info.reference_scenes.push_back(
+                {text(r, at, "name"), text(r, at, "file"), text(r, at, "digest"),
+                 uint32_t(unsigned_integer(r, at, "width", UINT32_MAX)),
+                 uint32_t(unsigned_integer(r, at, "height", UINT32_MAX))});
+        }
+    }
+    return info;
+}
+
+Result<PluginInfo> plugin_info_from_json(const json& j, std::string_view name) {
+    return json_fields::read_json(name, [&] { return read_plugin_info(j, ""); });
 }
 
 json to_json(const CaseSpec& s) {
@@ -138,57 +160,80 @@ json to_json(const CaseSpec& s) {
             {"scene_file", s.scene_file}};
 }
 
-Result<CaseSpec> case_spec_from_json(const json& j, std::string_view name) {
-    try {
-        CaseSpec s;
-        s.id = j.at("id").get<std::string>();
-        s.description = j.at("description").get<std::string>();
-        const auto kind = parse_enum<CaseKind>(kKindNames, j.at("kind").get<std::string>());
-        const auto pattern = parse_enum<Pattern>(kPatternNames, j.at("pattern").get<std::string>());
-        if (!kind || !pattern)
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: unknown case kind or pattern", name));
-        const auto lights = parse_enum<LightSet>(kLightNames, j.at("lights").get<std::string>());
-        const auto masks = parse_enum<MaskFill>(kMaskNames, j.at("masks").get<std::string>());
-        const auto poison = parse_enum<Poison>(kPoisonNames, j.at("poison").get<std::string>());
-        if (!lights || !masks || !poison)
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: unknown lights, masks or poison", name));
-        s.kind = *kind;
-        s.pattern = *pattern;
-        s.lights = *lights;
-        s.masks = *masks;
-        s.poison = *poison;
-        s.plugin_floor = j.at("plugin_floor").get<int32_t>();
-        s.frames = j.at("frames").get<uint32_t>();
-        s.prior_loads = j.at("prior_loads").get<uint32_t>();
-        s.sweep = j.at("sweep").get<std::vector<json>>();
-        s.inputs = j.at("inputs").get<std::map<std::string, std::string>>();
-        s.seed = j.at("seed").get<uint64_t>();
-        s.width = j.at("width").get<uint32_t>();
-        s.height = j.at("height").get<uint32_t>();
-        s.floors = j.at("floors").get<uint32_t>();
-        s.params = j.at("params");
-        s.preset = j.at("preset").get<std::string>();
-        s.time = j.at("time").get<float>();
-        s.switches = j.at("switches").get<uint32_t>();
-        s.reference = j.value("reference", json());
-        s.scene_file = j.value("scene_file", std::string());
-        for (const json& c : j.at("companions"))
-            s.companions.push_back({c.at("id").get<std::string>(), c.at("file").get<std::string>(),
-                                    c.at("scope").get<std::string>()});
-        if (s.width == 0 || s.height == 0 || s.floors == 0 || s.frames == 0)
-            return make_error(
-                ErrorCode::InvalidInput,
-                fmt::format("{}: width, height, floors and frames must be > 0", name));
-        if (s.plugin_floor >= int32_t(s.floors))
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: plugin_floor {} is not one of the {} floors", name,
-                                          s.plugin_floor, s.floors));
-        return s;
-    } catch (const json::exception& e) {
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}", name, e.what()));
+namespace {
+
+// One of `names`, as the enum it indexes.
+template <class Enum, size_t N>
+Enum enum_field(const json& j, const std::string& path, std::string_view key,
+                const char* const (&names)[N]) {
+    const std::string name = json_fields::text(j, path, key);
+    if (const auto value = parse_enum<Enum>(names, name)) return *value;
+    std::string known;
+    for (const char* n : names) known += (known.empty() ? "" : ", ") + std::string(n);
+    json_fields::fail(
+        json_fields::field(path, key),
+        fmt::format("unknown value {} (known: {})", json_fields::json_quoted(name), known));
+}
+
+}  // namespace
+
+CaseSpec read_case_spec(const json& j, const std::string& path) {
+    using namespace json_fields;
+    expect_object(
+        j, path,
+        {"id",     "description",  "kind",   "seed",        "width",    "height",     "pattern",
+         "floors", "params",       "preset", "time",        "switches", "companions", "lights",
+         "masks",  "plugin_floor", "frames", "prior_loads", "sweep",    "poison",     "inputs"},
+        {"reference", "scene_file"});
+    CaseSpec s;
+    s.id = text(j, path, "id");
+    s.description = text(j, path, "description");
+    s.kind = enum_field<CaseKind>(j, path, "kind", kKindNames);
+    s.pattern = enum_field<Pattern>(j, path, "pattern", kPatternNames);
+    s.lights = enum_field<LightSet>(j, path, "lights", kLightNames);
+    s.masks = enum_field<MaskFill>(j, path, "masks", kMaskNames);
+    s.poison = enum_field<Poison>(j, path, "poison", kPoisonNames);
+    const int64_t plugin_floor = integer(j, path, "plugin_floor");
+    if (plugin_floor < INT32_MIN || plugin_floor > INT32_MAX)
+        fail(field(path, "plugin_floor"), fmt::format("is out of range, got {}", plugin_floor));
+    s.plugin_floor = int32_t(plugin_floor);
+    s.frames = uint32_t(unsigned_integer(j, path, "frames", UINT32_MAX));
+    s.prior_loads = uint32_t(unsigned_integer(j, path, "prior_loads", UINT32_MAX));
+    s.sweep = array(j.at("sweep"), field(path, "sweep")).get<std::vector<json>>();
+    const std::string inputs_path = field(path, "inputs");
+    const json& inputs = j.at("inputs");
+    if (!inputs.is_object()) fail(inputs_path, "must be an object, got " + describe(inputs));
+    for (const auto& [key, value] : inputs.items())
+        s.inputs[key] = text(value, field(inputs_path, key));
+    s.seed = unsigned_integer(j, path, "seed");
+    s.width = uint32_t(unsigned_integer(j, path, "width", UINT32_MAX));
+    s.height = uint32_t(unsigned_integer(j, path, "height", UINT32_MAX));
+    s.floors = uint32_t(unsigned_integer(j, path, "floors", UINT32_MAX));
+    s.params = j.at("params");
+    s.preset = text(j, path, "preset");
+    s.time = finite_float(j, path, "time");
+    s.switches = uint32_t(unsigned_integer(j, path, "switches", UINT32_MAX));
+    s.reference = j.value("reference", json());
+    if (const json* scene_file = optional(j, "scene_file"))
+        s.scene_file = text(*scene_file, field(path, "scene_file"));
+    const std::string companions_path = field(path, "companions");
+    const json& companions = array(j.at("companions"), companions_path);
+    for (size_t i = 0; i < companions.size(); ++i) {
+        const json& c = companions[i];
+        const std::string at = element(companions_path, i);
+        expect_object(c, at, {"id", "file", "scope"});
+        s.companions.push_back({text(c, at, "id"), text(c, at, "file"), text(c, at, "scope")});
     }
+    if (s.width == 0 || s.height == 0 || s.floors == 0 || s.frames == 0)
+        fail(path, "width, height, floors and frames must be > 0");
+    if (s.plugin_floor >= int32_t(s.floors))
+        fail(field(path, "plugin_floor"),
+             fmt::format("{} is not one of the {} floors", s.plugin_floor, s.floors));
+    return s;
+}
+
+Result<CaseSpec> case_spec_from_json(const json& j, std::string_view name) {
+    return json_fields::read_json(name, [&] { return read_case_spec(j, ""); });
 }
 
 uint64_t splitmix64(uint64_t x) {

@@ -49,6 +49,9 @@ struct PluginInfo {
 };
 nlohmann::json to_json(const PluginInfo& info);
 Result<PluginInfo> plugin_info_from_json(const nlohmann::json& json, std::string_view name);
+// The same inside another reader of the one field reader (core/json_fields.hpp): the info at
+// `path`; a bad field throws json_fields::JsonFieldError, for that reader's read_json to catch.
+PluginInfo read_plugin_info(const nlohmann::json& json, const std::string& path);
 
 // What a case does with the plugin (case_runner.cpp runs each kind).
 enum class CaseKind {
@@ -121,6 +124,8 @@ struct CaseSpec {
 };
 nlohmann::json to_json(const CaseSpec& spec);
 Result<CaseSpec> case_spec_from_json(const nlohmann::json& json, std::string_view name);
+// The same inside another reader (see read_plugin_info).
+CaseSpec read_case_spec(const nlohmann::json& json, const std::string& path);
 
 // The cases of one run (case_plan.cpp): each dimension of the input model varied on its own,
 // then combinations from a Latin hypercube. Strictness 1..10 sets how many combinations, sweep

@@ -10,9 +10,9 @@
 #include "case_batch.hpp"
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
+#include "core/json_fields.hpp"
 #include "core/sha256.hpp"
 #include "core/strict_json.hpp"
-#include "json_fields.hpp"
 #include "registry.hpp"
 #include "scene/scene.hpp"
 #include "validate.hpp"
@@ -42,11 +42,8 @@ double number(const json& j, const std::string& path, std::string_view key, doub
     return v.get<double>();
 }
 
-std::string text(const json& j, const std::string& path, std::string_view key) {
-    const json& v = j.at(std::string(key));
-    if (!v.is_string() || v.get<std::string>().empty())
-        fail(field(path, key), "must be a non-empty string");
-    return v.get<std::string>();
+std::string filled_text(const json& j, const std::string& path, std::string_view key) {
+    return non_empty_text(required(j, path, key), field(path, key));
 }
 
 ReferenceSet read_manifest(const json& j, const fs::path& directory) {
@@ -54,15 +51,15 @@ ReferenceSet read_manifest(const json& j, const fs::path& directory) {
         j, "",
         {"format", "plugin", "version", "source_digest", "blessed_by", "at", "gates", "images"},
         {"scenes"});
-    if (text(j, "", "format") != kReferencesFormat)
+    if (filled_text(j, "", "format") != kReferencesFormat)
         fail("format", fmt::format("is not \"{}\"", kReferencesFormat));
     ReferenceSet set;
     set.directory = directory;
-    set.plugin = text(j, "", "plugin");
-    set.version = text(j, "", "version");
-    set.source_digest = text(j, "", "source_digest");
-    set.blessed_by = text(j, "", "blessed_by");
-    set.at = text(j, "", "at");
+    set.plugin = filled_text(j, "", "plugin");
+    set.version = filled_text(j, "", "version");
+    set.source_digest = filled_text(j, "", "source_digest");
+    set.blessed_by = filled_text(j, "", "blessed_by");
+    set.at = filled_text(j, "", "at");
     const json& g = j.at("gates");
     expect_object(g, "gates", {"warn", "fail", "fail_percent", "hard_fail"});
     set.gates.warn = number(g, "gates", "warn", 0, 1e9);
@@ -277,13 +274,10 @@ Result<std::optional<ReferenceSet>> load_references(const fs::path& root,
     if (!fs::exists(manifest, ec)) return std::optional<ReferenceSet>();
     auto parsed = read_json_file(manifest, kMaxHarnessFileBytes, "a reference manifest");
     if (!parsed) return parsed.error();
-    ReferenceSet set;
-    try {
-        set = read_manifest(parsed.value(), directory);
-    } catch (const JsonFieldError& e) {
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: {}: {}", manifest.string(), e.path, e.what));
-    }
+    auto read =
+        read_json(manifest.string(), [&] { return read_manifest(parsed.value(), directory); });
+    if (!read) return read.error();
+    ReferenceSet set = std::move(read.value());
     if (set.plugin != plugin_id)
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("{}: plugin: \"{}\" is not the folder's plugin \"{}\"",

@@ -12,7 +12,7 @@
 #include <set>
 
 #include "core/atomic_file.hpp"
-#include "json_fields.hpp"
+#include "core/json_fields.hpp"
 
 namespace acetate::harness {
 
@@ -271,8 +271,8 @@ json to_json(const ValidationReport& report) {
 }
 
 // ---- JSON reading ---------------------------------------------------------------------------
-// Field errors (json_fields.hpp) are turned into a Result by case_result_from_json, so the
-// readers below stay straight-line.
+// The one field reader (core/json_fields.hpp); case_result_from_json turns its errors into a
+// Result, so the readers below stay straight-line.
 
 namespace {
 
@@ -280,29 +280,15 @@ using namespace json_fields;
 
 // Each reader leaves `out` at its default when the key is absent.
 void read_text(const json& j, const std::string& path, std::string_view key, std::string& out) {
-    if (!j.contains(key)) return;
-    const json& v = j.at(key);
-    if (!v.is_string())
-        fail(field(path, key), fmt::format("must be a string, found {}", v.type_name()));
-    out = v.get<std::string>();
+    if (const json* v = optional(j, key)) out = text(*v, field(path, key));
 }
 
 void read_unsigned(const json& j, const std::string& path, std::string_view key, uint64_t& out) {
-    if (!j.contains(key)) return;
-    const json& v = j.at(key);
-    if (!v.is_number_unsigned())
-        fail(field(path, key), fmt::format("must be a non-negative integer, found {}", v.dump()));
-    out = v.get<uint64_t>();
+    if (const json* v = optional(j, key)) out = unsigned_integer(*v, field(path, key));
 }
 
 void read_signed(const json& j, const std::string& path, std::string_view key, int64_t& out) {
-    if (!j.contains(key)) return;
-    const json& v = j.at(key);
-    const bool fits = v.is_number_integer() &&
-                      (!v.is_number_unsigned() ||
-                       v.get<uint64_t>() <= uint64_t(std::numeric_limits<int64_t>::max()));
-    if (!fits) fail(field(path, key), fmt::format("must be an integer, found {}", v.dump()));
-    out = v.get<int64_t>();
+    if (const json* v = optional(j, key)) out = integer(*v, field(path, key));
 }
 
 // A number, or one of the strings float_to_json / number_to_json write for non-finite values.
@@ -314,8 +300,7 @@ double read_number_value(const json& v, const std::string& path) {
         if (s == kInfinity) return std::numeric_limits<double>::infinity();
         if (s == kMinusInfinity) return -std::numeric_limits<double>::infinity();
     }
-    fail(path, fmt::format("must be a number, \"NaN\", \"Infinity\" or \"-Infinity\", found {}",
-                           v.dump()));
+    fail(path, "must be a number, \"NaN\", \"Infinity\" or \"-Infinity\", got " + describe(v));
 }
 
 void read_number(const json& j, const std::string& path, std::string_view key, double& out) {
@@ -328,7 +313,7 @@ void read_rgba(const json& j, const std::string& path, std::string_view key,
     const json& v = j.at(key);
     const std::string here = field(path, key);
     if (!v.is_array() || v.size() != 4)
-        fail(here, fmt::format("must be an array of 4 numbers (r, g, b, a), found {}", v.dump()));
+        fail(here, "must be an array of 4 numbers (r, g, b, a), got " + describe(v));
     for (size_t i = 0; i < 4; ++i) {
         const double channel = read_number_value(v[i], element(here, i));
         // Narrowing a double that rounds past float's largest value is undefined. The bound is
@@ -356,8 +341,7 @@ void read_images(const json& j, const std::string& path, std::string_view key,
     if (!j.contains(key)) return;
     const json& v = j.at(key);
     const std::string here = field(path, key);
-    if (!v.is_object())
-        fail(here, fmt::format("must be an object of role: path, found {}", v.type_name()));
+    if (!v.is_object()) fail(here, "must be an object of role: path, got " + describe(v));
     for (const auto& item : v.items()) read_text(v, here, item.key(), out[item.key()]);
 }
 
@@ -365,9 +349,8 @@ template <class T, class ReadOne>
 void read_list(const json& j, const std::string& path, std::string_view key, std::vector<T>& out,
                ReadOne read_one) {
     if (!j.contains(key)) return;
-    const json& v = j.at(key);
     const std::string here = field(path, key);
-    if (!v.is_array()) fail(here, fmt::format("must be an array, found {}", v.type_name()));
+    const json& v = array(j.at(key), here);
     for (size_t i = 0; i < v.size(); ++i) out.push_back(read_one(v[i], element(here, i)));
 }
 
@@ -395,8 +378,10 @@ CheckResult read_check(const json& j, const std::string& path) {
     return check;
 }
 
-CaseResult read_case(const json& j) {
-    const std::string path;  // the root
+}  // namespace
+
+CaseResult read_case_result(const json& j, const std::string& path) {
+    using namespace json_fields;
     expect_object(j, path, {"id"},
                   {"description", "seed", "verdict", "message", "checks", "images", "seconds",
                    "reproduce", "log", "output_digest", "inputs"});
@@ -416,14 +401,9 @@ CaseResult read_case(const json& j) {
     return result;
 }
 
-}  // namespace
-
 Result<CaseResult> case_result_from_json(const json& document, std::string_view name) {
     try {
-        return read_case(document);
-    } catch (const JsonFieldError& e) {
-        const std::string where = e.path.empty() ? "" : e.path + ": ";
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}{}", name, where, e.what));
+        return json_fields::read_json(name, [&] { return read_case_result(document, ""); });
     } catch (const nlohmann::json::exception& e) {
         // The readers check every type first; this is a safety net, not an expected path.
         return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}", name, e.what()));

@@ -147,6 +147,9 @@ nlohmann::json to_json(const CaseResult& result);
 nlohmann::json to_json(const ValidationReport& report);
 // The inverse of to_json(CaseResult): how the parent reads a child's result file.
 Result<CaseResult> case_result_from_json(const nlohmann::json& json, std::string_view name);
+// The same inside another reader of the one field reader (core/json_fields.hpp): a bad field
+// throws json_fields::JsonFieldError, for that reader's read_json to catch.
+CaseResult read_case_result(const nlohmann::json& json, const std::string& path);
 
 // report.json, written atomically.
 Result<void> write_json_report(const ValidationReport& report, const std::filesystem::path& file);

@@ -8,6 +8,7 @@
 #include "case_batch.hpp"
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
+#include "core/json_fields.hpp"
 #include "core/strict_json.hpp"
 #include "validate.hpp"
 
@@ -25,35 +26,30 @@ Result<ShardResult> read_one(const fs::path& file) {
     auto parsed = read_json_file(file, kMaxHarnessFileBytes, "a case result");
     if (!parsed) return parsed.error();
     const json& j = parsed.value();
-    try {
-        if (j.at("format") != kShardFormat)
-            return invalid(file, fmt::format("format is not \"{}\"", kShardFormat));
+    return json_fields::read_json(file.string(), [&] {
+        using namespace json_fields;
+        expect_object(j, "",
+                      {"format", "plugin", "strictness", "seed", "harness_version", "stage", "spec",
+                       "result"});
+        if (text(j, "", "format") != kShardFormat)
+            fail("format", fmt::format("is not \"{}\"", kShardFormat));
         ShardResult r;
         r.file = file;
-        auto plugin = plugin_info_from_json(j.at("plugin"), file.string());
-        if (!plugin) return plugin.error();
-        r.plugin = std::move(plugin.value());
-        r.strictness = j.at("strictness").get<int>();
-        r.seed = j.at("seed").get<uint64_t>();
-        r.harness_version = j.at("harness_version").get<std::string>();
-        auto stage = parse_validation_stage(j.at("stage").get<std::string>());
+        r.plugin = read_plugin_info(j.at("plugin"), "plugin");
+        r.strictness = int(integer(j, "", "strictness"));
+        r.seed = unsigned_integer(j, "", "seed");
+        r.harness_version = text(j, "", "harness_version");
+        auto stage = parse_validation_stage(text(j, "", "stage"));
         if (!stage ||
             (*stage != ValidationStage::AlphaTested && *stage != ValidationStage::Integrated))
-            return invalid(file, "stage: must be ALPHA_TESTED or INTEGRATED");
+            fail("stage", "must be ALPHA_TESTED or INTEGRATED");
         r.stage = *stage;
-        auto spec = case_spec_from_json(j.at("spec"), file.string());
-        if (!spec) return spec.error();
-        r.spec = std::move(spec.value());
-        auto result = case_result_from_json(j.at("result"), file.string());
-        if (!result) return result.error();
-        r.result = std::move(result.value());
+        r.spec = read_case_spec(j.at("spec"), "spec");
+        r.result = read_case_result(j.at("result"), "result");
         if (r.result.id != r.spec.id)
-            return invalid(
-                file, fmt::format("result is for case {}, spec for {}", r.result.id, r.spec.id));
+            fail("result", fmt::format("is for case {}, spec for {}", r.result.id, r.spec.id));
         return r;
-    } catch (const json::exception& e) {
-        return invalid(file, e.what());
-    }
+    });
 }
 
 }  // namespace

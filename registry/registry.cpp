@@ -21,7 +21,6 @@
 #include "core/input_file.hpp"
 #include "core/sha256.hpp"
 #include "core/strict_json.hpp"
-#include "json_fields.hpp"
 #include "plugins/effect_descriptor.hpp"
 #include "registry_fields.hpp"
 

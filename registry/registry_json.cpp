@@ -8,8 +8,8 @@
 #include <array>
 #include <nlohmann/json.hpp>
 
+#include "core/json_fields.hpp"
 #include "core/strict_json.hpp"
-#include "json_fields.hpp"
 #include "plugins/effect_descriptor.hpp"
 #include "registry.hpp"
 #include "registry_fields.hpp"
@@ -22,15 +22,8 @@ using nlohmann::ordered_json;
 using namespace registry_fields;
 
 // ---- JSON reading -------------------------------------------------------------------------
-// Field errors (json_fields.hpp) are caught in Registry::parse.
+// The one field reader (core/json_fields.hpp); its errors become a Result in Registry::parse.
 using namespace json_fields;
-
-std::string text(const json& j, const std::string& path, std::string_view key) {
-    const json& v = j.at(std::string(key));
-    if (!v.is_string())
-        fail(field(path, key), fmt::format("must be a string, found {}", v.type_name()));
-    return v.get<std::string>();
-}
 
 std::string nonempty(const json& j, const std::string& path, std::string_view key) {
     std::string s = text(j, path, key);
@@ -63,7 +56,6 @@ SignOff read_sign_off(const json& j, const std::string& path) {
 }
 
 Waiver read_waiver(const json& j, const std::string& path) {
-    if (!j.is_object()) fail(path, fmt::format("must be an object, found {}", j.type_name()));
     expect_object(j, path, {"check", "reason", "by", "at", "until", "source_digest"});
     Waiver w{nonempty(j, path, "check"), nonempty(j, path, "reason"),
              nonempty(j, path, "by"),    timestamp(j, path, "at"),
@@ -102,7 +94,6 @@ StageEvidence read_evidence(const json& j, const std::string& path) {
 }
 
 RegistryEntry read_entry(const json& j, const std::string& path) {
-    if (!j.is_object()) fail(path, fmt::format("must be an object, found {}", j.type_name()));
     expect_object(j, path, {"id", "version", "stage", "binary_sha256", "source_digest"},
                   {"review", "alpha_tested", "integrated", "promotion", "waivers"});
 
@@ -203,12 +194,11 @@ Result<Registry> Registry::parse(std::string_view json_text, std::string_view na
     if (!parsed) return parsed.error();
     const json& doc = parsed.value();
     Registry registry;
-    try {
+    auto read = read_json(name, [&] {
         expect_object(doc, "", {"format", "plugins"});
         if (const std::string format = text(doc, "", "format"); format != kFormat)
             fail("format", fmt::format("\"{}\" is not \"{}\"", format, kFormat));
-        const json& plugins = doc["plugins"];
-        if (!plugins.is_array()) fail("plugins", "must be an array");
+        const json& plugins = array(doc["plugins"], "plugins");
         for (size_t i = 0; i < plugins.size(); ++i) {
             const std::string path = fmt::format("plugins[{}]", i);
             RegistryEntry e = read_entry(plugins[i], path);
@@ -216,10 +206,8 @@ Result<Registry> Registry::parse(std::string_view json_text, std::string_view na
                 fail(path, fmt::format("{} appears twice", plugin_name(e.id, e.version)));
             registry.entries_.push_back(std::move(e));
         }
-    } catch (const JsonFieldError& e) {
-        const std::string where = e.path.empty() ? "" : e.path + ": ";
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}{}", name, where, e.what));
-    }
+    });
+    if (!read) return read.error();
     std::sort(registry.entries_.begin(), registry.entries_.end(), entry_less);
     return registry;
 }

@@ -266,7 +266,7 @@ TEST(CaseResultJson, OptionalFieldsDefault) {
 TEST(CaseResultJson, ErrorsNameTheFileAndTheField) {
     json missing_id = to_json(full_case());
     missing_id.erase("id");
-    EXPECT_EQ(refusal(missing_id), "child.json: id: missing");
+    EXPECT_EQ(refusal(missing_id), "child.json: missing required field \"id\"");
 
     json bad_verdict = to_json(full_case());
     bad_verdict["checks"][1]["verdict"] = "MAYBE";
@@ -306,7 +306,7 @@ TEST(CaseResultJson, ErrorsNameTheFileAndTheField) {
 
     json misspelt = to_json(full_case());
     misspelt["checks"][0]["violation"] = 3;
-    EXPECT_EQ(refusal(misspelt).rfind("child.json: checks[0].violation: unknown field", 0), 0u)
+    EXPECT_EQ(refusal(misspelt).rfind("child.json: checks[0]: unknown field \"violation\"", 0), 0u)
         << refusal(misspelt);
 
     json checks_object = to_json(full_case());
