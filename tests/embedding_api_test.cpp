@@ -136,14 +136,15 @@ TEST_F(EmbeddingApi, AHostWithoutPluginsReadsNoRegistryAndRefusesAScenesPlugin) 
     ASSERT_TRUE(created) << "the registry is not read: " << created.error().message;
     EXPECT_EQ(host::Host::registry_file(o), dir_ / "registry.json");
 
-    test::write_text(dir_ / "lit.json", scene_text(R"({"plugin": "acetate.lighting"})"));
+    // A plugin no folder holds: the host refuses it before looking for its file.
+    test::write_text(dir_ / "lit.json", scene_text(R"({"plugin": "test.installed_nowhere"})"));
     auto info = host::Host::inspect_scene_file(dir_ / "lit.json");
     ASSERT_TRUE(info);
     EXPECT_TRUE(info->names_plugins);
     auto scene = (*created)->load_scene_file(dir_ / "lit.json");
     ASSERT_FALSE(scene);
     const std::string& line = scene.error().message;
-    EXPECT_NE(line.find("floors[1].effects[0]"), std::string::npos) << line;
+    EXPECT_NE(line.find("lit.json: floors[1].effects[0].plugin: "), std::string::npos) << line;
     EXPECT_NE(line.find("this host loads no plugins"), std::string::npos) << line;
     EXPECT_EQ(line.find('\n'), std::string::npos) << line;
 

@@ -14,10 +14,11 @@
 namespace acetate::host {
 namespace {
 
-bool names_plugins(const SceneDesc& scene) {
-    return !scene.global_effects.empty() ||
-           std::any_of(scene.floors.begin(), scene.floors.end(),
-                       [](const FloorDesc& f) { return !f.effects.empty(); });
+// The first effect the scene names, or null.
+const EffectRef* first_effect(const SceneDesc& scene) {
+    for (const FloorDesc& floor : scene.floors)
+        if (!floor.effects.empty()) return &floor.effects.front();
+    return scene.global_effects.empty() ? nullptr : &scene.global_effects.front();
 }
 
 acetate::OutputView internal_view(View view) {
@@ -30,6 +31,12 @@ Result<std::unique_ptr<Scene::Loaded>> load(const std::shared_ptr<Host::State>& 
                                             acetate::Result<SceneDesc> parsed,
                                             const SceneOptions& scene_options) {
     if (!parsed) return error_of(parsed.error());
+    // Refused before any plugin file is looked for: whether it exists does not matter.
+    if (const EffectRef* effect = first_effect(parsed.value()); effect && !host->load_plugins)
+        return Error{
+            fmt::format("{}: {}.plugin: this host loads no plugins "
+                        "(HostOptions::load_plugins is off)",
+                        parsed->file.string(), effect->where)};
     auto loaded = std::make_unique<Scene::Loaded>();
     loaded->host = host;
     loaded->desc = std::move(parsed.value());
@@ -83,7 +90,7 @@ Result<SceneInfo> Host::inspect_scene_file(const std::filesystem::path& file) {
     info.width = scene->width;
     info.height = scene->height;
     info.active_floor = scene->active_floor;
-    info.names_plugins = names_plugins(scene.value());
+    info.names_plugins = first_effect(scene.value()) != nullptr;
     info.inputs.push_back({scene->file, "scene"});
     for (size_t f = 0; f < scene->floors.size(); ++f) {
         const FloorDesc& floor = scene->floors[f];
@@ -105,6 +112,7 @@ Result<std::unique_ptr<Host>> Host::create(const HostOptions& options) {
     state->warn = options.on_warning ? options.on_warning : [](const std::string& line) {
         std::fprintf(stderr, "acetate: %s\n", line.c_str());
     };
+    state->load_plugins = options.load_plugins;
     // The policy first: a malformed registry is the caller's input, found before the device.
     std::optional<LoadPolicy> policy;
     if (options.load_plugins) {

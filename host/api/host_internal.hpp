@@ -20,6 +20,7 @@ struct Host::State {
     std::unique_ptr<VulkanContext> context;
     std::unique_ptr<Renderer> renderer;
     std::function<void(const std::string&)> warn;
+    bool load_plugins = true;  // HostOptions::load_plugins
 };
 
 struct Scene::Loaded {
