@@ -4,6 +4,11 @@
 //
 // The golden images in tests/abi_1_0/golden/ were written by this test running on the 1.0 host
 // (ACETATE_RECORD_ABI_GOLDEN=<folder>); they are float EXR, so "bit-identical" is exact.
+// The bits are lavapipe's (llvmpipe, x86-64), the device this suite runs on: another driver
+// renders the same plugin within half-float rounding of them, not bit for bit (on an NVIDIA
+// H100 the first frame differed at pixel 3 by one half-float step, 0.0282135 against
+// 0.0282288), so there the second test below, which compares two builds on one device, is the
+// one that holds.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
