@@ -10,23 +10,16 @@
 #include <vector>
 
 #include "core/input_file.hpp"
+#include "core/json_fields.hpp"
 
 namespace acetate {
 namespace {
 
 using json = nlohmann::json;
-
-std::string field_path(const std::string& parent, std::string_view key) {
-    return parent.empty() ? std::string(key) : fmt::format("{}.{}", parent, key);
-}
-
-std::string item_path(const std::string& parent, size_t index) {
-    return fmt::format("{}[{}]", parent, index);
-}
-
-std::string json_quoted(std::string_view text) {
-    return json(std::string(text)).dump(-1, ' ', false, json::error_handler_t::replace);
-}
+// Paths and quoting as the field reader writes them, so a duplicate reads like any field error.
+using json_fields::element;
+using json_fields::field;
+using json_fields::json_quoted;
 
 // A parser callback that remembers the first key written twice in one object, and where.
 class DuplicateKeyFinder {
@@ -76,8 +69,7 @@ class DuplicateKeyFinder {
     std::string container_path() const {
         std::string path;
         for (size_t i = 0; i + 1 < stack_.size(); ++i)
-            path = stack_[i].object ? field_path(path, stack_[i].key)
-                                    : item_path(path, stack_[i].index);
+            path = stack_[i].object ? field(path, stack_[i].key) : element(path, stack_[i].index);
         return path;
     }
 
@@ -121,11 +113,9 @@ Result<json> parse_json_strict(std::string_view text, std::string_view label) {
         return make_error(ErrorCode::InvalidInput, fmt::format("{}: malformed JSON: {}", label,
                                                                one_line_parse_message(e.what())));
     }
-    if (const auto& dup = duplicates.found()) {
-        const std::string where = dup->first.empty() ? "" : dup->first + ": ";
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}duplicate field {}", label,
-                                                               where, json_quoted(dup->second)));
-    }
+    if (const auto& dup = duplicates.found())
+        return json_fields::to_error({dup->first, "duplicate field " + json_quoted(dup->second)},
+                                     label);
     return root;
 }
 
