@@ -102,8 +102,12 @@ TEST_F(EmbeddingApi, ViewsPrecisionAndPerFloorStatistics) {
     for (int c = 0; c < 4; ++c)
         EXPECT_NEAR(p[c], kHighPremultiplied[c] + kLow[c] * (1 - kHighPremultiplied[3]), 1e-6f)
             << "channel " << c;
-    for (const host::ImageInfo& target : (*scene)->render_targets())
-        if (target.name == "accumulation") EXPECT_EQ(target.format, "rgba32f");
+    const std::vector<host::ImageInfo> targets = (*scene)->render_targets();
+    const auto accumulation = std::find_if(targets.begin(), targets.end(),
+                                           [](const auto& t) { return t.name == "accumulation"; });
+    ASSERT_NE(accumulation, targets.end());
+    EXPECT_EQ(accumulation->format, "rgba32f");
+    EXPECT_EQ(accumulation->bytes, uint64_t(16) * 8 * 16) << "16x8 texels of 4 32-bit floats";
     EXPECT_GT((*scene)->images_held().size(), (*scene)->render_targets().size())
         << "the tile textures and the mask are held too";
 
