@@ -8,6 +8,7 @@
 #include <ctime>
 #include <fstream>
 
+#include "bench_outputs.hpp"
 #include "config_measure.hpp"
 #include "peer_flatten.hpp"
 #include "render/renderer.hpp"
@@ -32,12 +33,6 @@ std::string load_average() {
     std::string a, b, c;
     in >> a >> b >> c;
     return a.empty() ? "unknown" : a + " " + b + " " + c;
-}
-
-std::string file_safe(std::string text) {
-    for (char& ch : text)
-        if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '.' && ch != '-') ch = '_';
-    return text;
 }
 
 // One plugin of one scene: the presets the bench runs it at, and its reference preset.
@@ -206,8 +201,7 @@ Result<BenchResults> run_bench(const BenchOptions& options, const ProgressFn& pr
             if (!e) return e.error();
             m.result.error = e.value();
             if (options.heat_map_dir) {
-                m.result.heat_map = file_safe(fmt::format("heat-s{}-{}-{}-{}.png", job.scene, id,
-                                                          m.result.preset, m.result.format));
+                m.result.heat_map = heat_map_name(job.scene, id, m.result.preset, m.result.format);
                 ACETATE_TRY(save_image(*options.heat_map_dir / m.result.heat_map, heat));
             }
             results.configs.push_back(m.result);

@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 
+#include "core/sha256.hpp"
 #include "vulkan/pipeline_cache_file.hpp"
 
 namespace acetate::harness {
@@ -42,6 +44,29 @@ Result<Session> open_session(const CaseContext& c) {
     auto renderer = Renderer::create(*session.context, options);
     if (!renderer) return renderer.error();
     session.renderer = std::move(renderer.value());
+    // Only the bytes the parent judged run here: the plugin under test as it was described,
+    // each companion as the registry recorded it. A file rewritten or swapped since is refused
+    // before its constructors run, and a case file cannot name a library of its own choosing.
+    std::map<std::string, std::string> required{{c.plugin.id, c.plugin.binary_sha256}};
+    for (const CompanionPlugin& other : c.spec.companions) required[other.id] = other.binary_sha256;
+    session.renderer->plugins().set_admission([required](const std::string& id,
+                                                         const fs::path& file,
+                                                         const fs::path& contents) -> Result<void> {
+        const auto wanted = required.find(id);
+        if (wanted == required.end() || wanted->second.empty())
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("{} ({}): not loaded: the case names no digest "
+                                          "for it",
+                                          id, file.string()));
+        auto sha = file_sha256(contents);
+        if (!sha) return sha.error();
+        if (sha.value() == wanted->second) return {};
+        return make_error(
+            ErrorCode::InvalidInput,
+            fmt::format("{} ({}): not loaded: its SHA-256 {} is not the {} "
+                        "judged for this run (the file changed)",
+                        id, file.string(), sha->substr(0, 12), wanted->second.substr(0, 12)));
+    });
     return session;
 }
 

@@ -134,7 +134,10 @@ Result<PluginInfo> plugin_info_from_json(const json& j, std::string_view name) {
 json to_json(const CaseSpec& s) {
     json companions = json::array();
     for (const CompanionPlugin& c : s.companions)
-        companions.push_back({{"id", c.id}, {"file", c.file}, {"scope", c.scope}});
+        companions.push_back({{"id", c.id},
+                              {"file", c.file},
+                              {"scope", c.scope},
+                              {"binary_sha256", c.binary_sha256}});
     return {{"id", s.id},
             {"description", s.description},
             {"kind", to_string(s.kind)},
@@ -221,8 +224,9 @@ CaseSpec read_case_spec(const json& j, const std::string& path) {
     for (size_t i = 0; i < companions.size(); ++i) {
         const json& c = companions[i];
         const std::string at = element(companions_path, i);
-        expect_object(c, at, {"id", "file", "scope"});
-        s.companions.push_back({text(c, at, "id"), text(c, at, "file"), text(c, at, "scope")});
+        expect_object(c, at, {"id", "file", "scope", "binary_sha256"});
+        s.companions.push_back({text(c, at, "id"), text(c, at, "file"), text(c, at, "scope"),
+                                text(c, at, "binary_sha256")});
     }
     if (s.width == 0 || s.height == 0 || s.floors == 0 || s.frames == 0)
         fail(path, "width, height, floors and frames must be > 0");

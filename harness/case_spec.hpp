@@ -86,6 +86,9 @@ const char* to_string(Poison poison);
 // Another plugin an integration case runs beside the one under test.
 struct CompanionPlugin {
     std::string id, file, scope;
+    // The bytes the registry recorded for it: the case's child loads the companion only if
+    // its sealed copy hashes to this (case_session.cpp).
+    std::string binary_sha256;
 };
 
 struct CaseSpec {

@@ -131,6 +131,17 @@ int reproduce(const FuzzOptions& o, CaseBatch& batch) {
         std::fprintf(stderr, "acetate-harness: %s\n", spec.error().message.c_str());
         return 1;
     }
+    // Fuzzing draws contract cases, which run the plugin under test alone. A case file that
+    // names other libraries would have this command load code no registry vouched for.
+    if (!spec->companions.empty()) {
+        std::fprintf(stderr,
+                     "acetate-harness: %s: companions: a fuzz case runs the plugin alone; this "
+                     "case names %zu other librar%s (integration cases run through acetate-"
+                     "harness validate, which takes companions only from the registry)\n",
+                     o.reproduce->string().c_str(), spec->companions.size(),
+                     spec->companions.size() == 1 ? "y" : "ies");
+        return 1;
+    }
     batch.total = 1;
     const CaseResult r = run_case_batch(batch, std::vector<CaseSpec>{spec.value()}).front();
     std::printf("%s: %s%s%s\n", r.id.c_str(), to_string(r.verdict), r.message.empty() ? "" : ": ",

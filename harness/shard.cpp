@@ -10,6 +10,7 @@
 #include "core/input_file.hpp"
 #include "core/json_fields.hpp"
 #include "core/strict_json.hpp"
+#include "ssh_signature.hpp"
 #include "validate.hpp"
 
 namespace acetate::harness {
@@ -22,23 +23,67 @@ Error invalid(const fs::path& file, const std::string& what) {
     return make_error(ErrorCode::InvalidInput, fmt::format("{}: {}", file.string(), what));
 }
 
-Result<ShardResult> read_one(const fs::path& file) {
-    auto parsed = read_json_file(file, kMaxHarnessFileBytes, "a case result");
+fs::path signature_file(const fs::path& result_file) {
+    fs::path sig = result_file;
+    sig += ".sig";
+    return sig;
+}
+
+// The runner's signature over the file's exact bytes, checked before any field is believed:
+// whoever can write the shared folder can write a file, but not its runner's signature.
+Result<void> check_signature(const fs::path& file, const std::string& bytes,
+                             const std::string& runner, const SignatureVerifier& runners) {
+    const fs::path sig = signature_file(file);
+    auto signature = read_input_file_if_exists(sig, kMaxSignatureBytes, "a signature");
+    if (!signature) return signature.error();
+    if (!signature->has_value())
+        return invalid(file, fmt::format("not signed: no {} (a shard's runner signs each "
+                                         "result: validate --out with --runner-key)",
+                                         sig.filename().string()));
+    auto verified = runners.verify(runner, bytes, **signature);
+    if (!verified)
+        return invalid(file, fmt::format("the runner's signature ({}) {}", sig.filename().string(),
+                                         verified.error().message));
+    return {};
+}
+
+Result<ShardResult> read_one(const fs::path& file, const SignatureVerifier& runners) {
+    auto bytes = read_input_file(file, kMaxHarnessFileBytes, "a case result");
+    if (!bytes) return bytes.error();
+    auto parsed = parse_json_strict(bytes.value(), file.string());
     if (!parsed) return parsed.error();
     const json& j = parsed.value();
-    return json_fields::read_json(file.string(), [&] {
+    auto runner = json_fields::read_json(file.string(), [&] {
         using namespace json_fields;
         expect_object(j, "",
-                      {"format", "plugin", "strictness", "seed", "harness_version", "stage", "spec",
-                       "result"});
+                      {"format", "runner", "plugin", "strictness", "seed", "harness_version",
+                       "stage", "spec", "result"});
         if (text(j, "", "format") != kShardFormat)
             fail("format", fmt::format("is not \"{}\"", kShardFormat));
+        return non_empty_text(j.at("runner"), "runner");
+    });
+    if (!runner) return runner.error();
+    ACETATE_TRY(check_signature(file, bytes.value(), runner.value(), runners));
+    return json_fields::read_json(file.string(), [&] {
+        using namespace json_fields;
         ShardResult r;
         r.file = file;
+        r.runner = runner.value();
         r.plugin = read_plugin_info(j.at("plugin"), "plugin");
-        r.strictness = int(integer(j, "", "strictness"));
+        // In the range a run accepts: 0 would read as "not recorded" in the evidence, which
+        // no promotion asks a waiver for.
+        const int64_t strictness = integer(j, "", "strictness");
+        if (strictness < kMinStrictness || strictness > kMaxStrictness)
+            fail("strictness", fmt::format("{} is not a strictness a run takes ({} to {})",
+                                           strictness, kMinStrictness, kMaxStrictness));
+        r.strictness = int(strictness);
         r.seed = unsigned_integer(j, "", "seed");
         r.harness_version = text(j, "", "harness_version");
+        // Another harness plans other cases and judges by other checks: its results are not
+        // this harness's evidence.
+        if (r.harness_version != kHarnessVersion)
+            fail("harness_version", fmt::format("\"{}\" is not this harness (\"{}\")",
+                                                r.harness_version, kHarnessVersion));
         auto stage = parse_validation_stage(text(j, "", "stage"));
         if (!stage ||
             (*stage != ValidationStage::AlphaTested && *stage != ValidationStage::Integrated))
@@ -57,7 +102,7 @@ Result<ShardResult> read_one(const fs::path& file) {
 Result<void> write_shard_results(const fs::path& out, const PluginInfo& plugin, int strictness,
                                  uint64_t seed, ValidationStage stage,
                                  const std::vector<CaseSpec>& cases,
-                                 const std::vector<CaseResult>& results) {
+                                 const std::vector<CaseResult>& results, const Runner& runner) {
     const fs::path folder = out / "results";
     std::error_code ec;
     fs::create_directories(folder, ec);
@@ -66,6 +111,7 @@ Result<void> write_shard_results(const fs::path& out, const PluginInfo& plugin, 
                           fmt::format("{}: cannot create: {}", folder.string(), ec.message()));
     for (size_t i = 0; i < cases.size() && i < results.size(); ++i) {
         const json j = {{"format", kShardFormat},
+                        {"runner", runner.name},
                         {"harness_version", kHarnessVersion},
                         {"plugin", to_json(plugin)},
                         {"strictness", strictness},
@@ -73,13 +119,18 @@ Result<void> write_shard_results(const fs::path& out, const PluginInfo& plugin, 
                         {"stage", to_string(stage)},
                         {"spec", to_json(cases[i])},
                         {"result", to_json(results[i])}};
-        ACETATE_TRY(
-            write_file_atomically(folder / (case_folder(cases[i].id) + ".json"), j.dump(2) + "\n"));
+        const fs::path file = folder / (case_folder(cases[i].id) + ".json");
+        const std::string bytes = j.dump(2) + "\n";
+        auto signature = ssh_sign(runner.key, bytes, kCaseResultNamespace);
+        if (!signature) return signature.error();
+        ACETATE_TRY(write_file_atomically(signature_file(file), signature.value()));
+        ACETATE_TRY(write_file_atomically(file, bytes));
     }
     return {};
 }
 
-Result<std::vector<ShardResult>> read_shard_results(const std::vector<fs::path>& folders) {
+Result<std::vector<ShardResult>> read_shard_results(const std::vector<fs::path>& folders,
+                                                    const SignatureVerifier& runners) {
     std::vector<ShardResult> all;
     std::map<std::string, fs::path> seen;
     for (const fs::path& folder : folders) {
@@ -95,7 +146,7 @@ Result<std::vector<ShardResult>> read_shard_results(const std::vector<fs::path>&
         std::sort(files.begin(), files.end());
         if (files.empty()) return invalid(results, "holds no case result");
         for (const fs::path& file : files) {
-            auto r = read_one(file);
+            auto r = read_one(file, runners);
             if (!r) return r.error();
             if (!all.empty()) {
                 const ShardResult& first = all.front();

@@ -14,32 +14,45 @@
 #include "core/result.hpp"
 #include "registry.hpp"
 #include "report.hpp"
+#include "ssh_signature.hpp"
 
 namespace acetate::harness {
 
-inline constexpr const char* kShardFormat = "acetate-case-result/1";
+inline constexpr const char* kShardFormat = "acetate-case-result/2";
+
+// Who signs a shard's results: a name the allowed signers list for a key that may sign in the
+// namespace kCaseResultNamespace, and that key's file (docs/cluster.md, "Runner keys").
+struct Runner {
+    std::string name;
+    std::filesystem::path key;
+};
 
 struct ShardResult {
     PluginInfo plugin;
     int strictness = 0;
     uint64_t seed = 0;
     std::string harness_version;
+    std::string runner;                                    // who ran it and signed the file
     ValidationStage stage = ValidationStage::AlphaTested;  // the stage the case belongs to
     CaseSpec spec;
     CaseResult result;
     std::filesystem::path file;  // where it was read from
 };
 
-// Writes one file per case under `out`/results/, each atomically.
+// Writes one file per case under `out`/results/, each atomically, and beside each its
+// runner's SSH signature over the file's exact bytes (`<case>.json.sig`, written first, so a
+// result file never stands without one).
 Result<void> write_shard_results(const std::filesystem::path& out, const PluginInfo& plugin,
                                  int strictness, uint64_t seed, ValidationStage stage,
                                  const std::vector<CaseSpec>& cases,
-                                 const std::vector<CaseResult>& results);
+                                 const std::vector<CaseResult>& results, const Runner& runner);
 
-// Every result under each folder's results/, checked to belong to one run: the same plugin
-// binary and source, strictness, seed and harness, and each case once. InvalidInput naming
-// the file and what differs otherwise (or naming the folder when it holds no result).
+// Every result under each folder's results/, checked to belong to one run: each signed by the
+// runner it names, with a key `runners` allows in kCaseResultNamespace, over its exact bytes;
+// the same plugin binary and source, strictness, seed and harness; each case once.
+// InvalidInput naming the file and what is wrong otherwise (or naming the folder when it
+// holds no result).
 Result<std::vector<ShardResult>> read_shard_results(
-    const std::vector<std::filesystem::path>& folders);
+    const std::vector<std::filesystem::path>& folders, const SignatureVerifier& runners);
 
 }  // namespace acetate::harness

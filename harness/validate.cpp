@@ -36,11 +36,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-// A file a child wrote: a child runs plugin code, so it is read like any untrusted input.
-Result<json> read_json(const fs::path& file) {
-    return read_json_file(file, kMaxHarnessFileBytes, "a harness file");
-}
-
 // ---- running the cases --------------------------------------------------------------------
 
 std::string reproduce_command(const ValidateOptions& o, const std::string& case_id) {
@@ -151,9 +146,12 @@ std::vector<CompanionPlugin> find_companions(const Registry& registry, const Plu
                 if (found || !fs::is_regular_file(file, ec)) continue;
                 auto sha = file_sha256(file);
                 if (!sha || sha.value() != e.binary_sha256) continue;
-                auto info = describe_plugin(file);  // integrated: trusted to load in-process
+                // Integrated, so trusted to load in-process: only the very bytes the registry
+                // recorded (a file rewritten since the hash above is refused, not loaded).
+                auto info = describe_plugin(file, e.binary_sha256);
                 if (!info) continue;
-                out.push_back({e.id, fs::absolute(file).string(), info->scope});
+                out.push_back(
+                    {e.id, fs::absolute(file).string(), info->scope, info->binary_sha256});
                 found = true;
             }
         }
@@ -178,103 +176,7 @@ void print_summary(const ValidationReport& report) {
     }
 }
 
-// The describe child's own error: what follows kDescribeErrorMarker on the last log line that
-// starts with it; "" when no line does.
-std::string own_describe_error(const std::string& log) {
-    const std::string marker = kDescribeErrorMarker;
-    std::istringstream in(log);
-    std::string error;
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind(marker, 0) == 0) error = line.substr(marker.size());
-    return error;
-}
-
-// Why the describe child gave no plugin.json, in one line. The child runs plugin code (the
-// entry point, info()), which can end the process any way it likes: exit() with any status,
-// 0 and the harness's own included, _exit, abort, a signal. The one ending the harness controls
-// is its own error path, so that one is made unmistakable (kDescribeFailure and a line starting
-// with kDescribeErrorMarker: a plugin would have to forge both), and every other ending, a
-// status 0 without plugin.json included, is the plugin's doing and said so; never "no
-// plugin.json", which names the symptom and sends the author looking in the wrong place.
-std::string describe_failure(const ChildOutcome& outcome, const std::string& log) {
-    if (outcome.timed_out)
-        return fmt::format("the plugin hung while describing itself ({})", outcome.message);
-    if (!outcome.signal && outcome.exit_code == kDescribeFailure) {
-        const std::string own = own_describe_error(log);
-        if (!own.empty()) return own;
-    }
-    return with_log(plugin_ended(outcome, "while describing itself"), log);
-}
-
 }  // namespace
-
-Result<PluginInfo> describe_plugin(const fs::path& file) {
-    PluginLoader loader({});
-    auto loaded = loader.load_file(file);
-    if (!loaded) return loaded.error();
-    const EffectDescriptor& d = loaded.value()->descriptor;
-    PluginInfo info;
-    info.file = fs::absolute(file).string();
-    info.id = d.id;
-    info.version = d.version_string();
-    info.display_name = d.display_name;
-    info.scope = d.scope == ACETATE_SCOPE_GLOBAL ? "global" : "floor";
-    info.coverage = d.coverage == ACETATE_COVERAGE_EXPANDING ? "expanding" : "preserving";
-    info.masks = d.masks;
-    for (const EffectParam& p : d.params) {
-        if (p.hidden) {
-            info.hidden_params.push_back(p.name);
-            continue;
-        }
-        const char* type = p.type == ACETATE_PARAM_INT     ? "int"
-                           : p.type == ACETATE_PARAM_BOOL  ? "bool"
-                           : p.type == ACETATE_PARAM_VEC2  ? "vec2"
-                           : p.type == ACETATE_PARAM_VEC3  ? "vec3"
-                           : p.type == ACETATE_PARAM_COLOR ? "color"
-                                                           : "float";
-        info.params.push_back(
-            {p.name, type, p.default_value, p.min_value, p.max_value, p.components()});
-    }
-    info.abi = abi_version_string(d.abi_minor);
-    for (const auto& [name, values] : d.presets) info.presets.push_back(name);
-    info.source_digest = d.source_digest;
-    auto sha = file_sha256(file);
-    if (!sha) return sha.error();
-    info.binary_sha256 = sha.value();
-    return info;
-}
-
-Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugin,
-                                     const fs::path& work_directory, double timeout_seconds) {
-    std::error_code ec;
-    fs::create_directories(work_directory, ec);
-    if (ec)
-        return make_error(ErrorCode::Io, fmt::format("{}: cannot create: {}",
-                                                     work_directory.string(), ec.message()));
-    const fs::path out = work_directory / "plugin.json";
-    fs::remove(out, ec);
-    ChildJob job;
-    job.argv = {self.string(), "describe", plugin.string(), "--out", out.string()};
-    job.log = work_directory / "describe.log";
-    job.timeout = std::chrono::milliseconds(int64_t(timeout_seconds * 1000));
-    ChildOutcome outcome;
-    run_children({job}, 1, [&](size_t, const ChildOutcome& o) { outcome = o; });
-    if (!outcome.started) return make_error(ErrorCode::Io, outcome.message);
-    const bool described =
-        !outcome.timed_out && !outcome.signal && outcome.exit_code == 0 && fs::exists(out, ec);
-    if (!described) {
-        const std::string why = describe_failure(outcome, tail_of_file(job.log, 4000));
-        // The host's own refusal names the plugin file already: name it once, not nested.
-        std::string reason = why;
-        if (reason.rfind(plugin.string() + ": ", 0) == 0)
-            reason.erase(0, plugin.string().size() + 2);
-        return make_error(ErrorCode::InvalidInput, fmt::format("{}: cannot describe the plugin: {}",
-                                                               plugin.string(), reason));
-    }
-    auto parsed = read_json(out);
-    if (!parsed) return parsed.error();
-    return plugin_info_from_json(*parsed, out.string());
-}
 
 int run_list_cases(const ValidateOptions& o) {
     std::string scratch = (fs::temp_directory_path() / "acetate-harness-list-XXXXXX").string();
@@ -318,12 +220,23 @@ int run_validate(const ValidateOptions& o) {
         return 1;
     }
     const fs::path html = o.report_directory / "index.html";
+    // Writes the reports; a run that already failed says so in one line, with the reports'
+    // own failure (a full disk, say) appended rather than printed as a second error.
     auto finish = [&](int status) {
         report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
         auto written = write_json_report(report, o.report_directory / "report.json");
         if (written && o.json_file) written = write_json_report(report, *o.json_file);
         if (written && o.junit_file) written = write_junit_report(report, *o.junit_file);
         if (written) written = write_html_report(report, o.report_directory);
+        if (!report.error.empty()) {
+            std::fprintf(stderr, "acetate-harness: %s%s\n", report.error.c_str(),
+                         written ? ""
+                                 : fmt::format(" (and the report could not be written: {})",
+                                               written.error().message)
+                                       .c_str());
+            if (written) std::printf("report: %s\n", fs::absolute(html).string().c_str());
+            return 1;
+        }
         if (!written) {
             std::fprintf(stderr, "acetate-harness: %s\n", written.error().message.c_str());
             return 1;
@@ -332,7 +245,6 @@ int run_validate(const ValidateOptions& o) {
         return status;
     };
     auto fail_run = [&](const std::string& message) {
-        std::fprintf(stderr, "acetate-harness: %s\n", message.c_str());
         report.error = message;
         return finish(1);
     };
@@ -343,21 +255,25 @@ int run_validate(const ValidateOptions& o) {
     const bool merging = !o.merge_from.empty();
     std::vector<ShardResult> shards;
     if (merging) {
-        auto read = read_shard_results(o.merge_from);
+        auto read = read_shard_results(o.merge_from,
+                                       SignatureVerifier(o.allowed_signers, kCaseResultNamespace));
         if (!read) return fail_run(read.error().message);
         shards = std::move(read.value());
         if (shards.front().strictness != o.strictness || shards.front().seed != o.seed)
             return fail_run("merge: the options' strictness and seed must be the shards'");
     }
-    auto described =
-        merging ? Result<PluginInfo>(shards.front().plugin)
-                : describe_in_child(o.self, o.plugin, o.report_directory, o.timeout_seconds);
+    // A merge plans from the plugin itself, as a single run does, never from what the result
+    // files say it was: they are only the shards' word.
+    auto described = describe_in_child(o.self, o.plugin, o.report_directory, o.timeout_seconds);
     if (!described) return fail_run(described.error().message);
-    if (!merging) {  // a merge plans with the scenes its shards ran
-        auto scenes = find_reference_scenes(o.references, described->id);
-        if (!scenes) return fail_run(scenes.error().message);
-        described->reference_scenes = std::move(scenes.value());
-    }
+    if (merging && described->binary_sha256 != shards.front().plugin.binary_sha256)
+        return fail_run(fmt::format(
+            "merge: {} is not the binary the shards ran (SHA-256 {} here, {} in {})",
+            o.plugin.string(), described->binary_sha256.substr(0, 12),
+            shards.front().plugin.binary_sha256.substr(0, 12), shards.front().file.string()));
+    auto scenes = find_reference_scenes(o.references, described->id);
+    if (!scenes) return fail_run(scenes.error().message);
+    described->reference_scenes = std::move(scenes.value());
     const PluginInfo plugin = std::move(described.value());
     if (merging) report.plugin_file = plugin.file;
     report.id = plugin.id;
@@ -372,18 +288,21 @@ int run_validate(const ValidateOptions& o) {
         return fail_run(w.error().message);
 
     // A malformed registry stops the run here, rather than reading as "nothing recorded".
-    if (auto registry = Registry::load(o.registry); !registry)
-        return fail_run(registry.error().message);
+    // Everything this run records goes through one transaction, written only at its end: a
+    // run refused on the way writes nothing.
+    auto opened = RegistryTransaction::open(o.registry);
+    if (!opened) return fail_run(opened.error().message);
+    RegistryTransaction registry = std::move(opened).value();
     // So do malformed references; missing ones mean the reference cases only render.
     auto references = load_references(o.references, plugin.id);
     if (!references) return fail_run(references.error().message);
     const bool partial = !o.only_cases.empty();
     if (!partial) {
-        auto imported = import_committed(o, plugin);
+        auto imported = import_committed(registry, o, plugin);
         if (!imported) return fail_run(imported.error().message);
         for (const std::string& line : imported.value()) std::printf("%s\n", line.c_str());
     }
-    const ValidationStage before = current_stage(o, plugin);
+    const ValidationStage before = current_stage(registry.view(), o, plugin);
     report.stage_before = to_string(before);
     std::printf(
         "validating %s %s (%s, %s, %s) from %s\nregistry %s: %s; strictness %d, seed "
@@ -424,8 +343,9 @@ int run_validate(const ValidateOptions& o) {
             run.total += cases.size() * std::max(1u, o.repeat);
             std::vector<CaseResult> results = run_repeated(run, cases, {o.repeat, o.shuffle_seed});
             if (o.out)
-                ACETATE_TRY(write_shard_results(*o.out, plugin, o.strictness, o.seed, stage, cases,
-                                                results));
+                ACETATE_TRY(
+                    write_shard_results(*o.out, plugin, o.strictness, o.seed, stage, cases, results,
+                                        Runner{o.runner, o.runner_key.value_or(fs::path())}));
             return results;
         }
         std::vector<CaseResult> results;
@@ -461,7 +381,7 @@ int run_validate(const ValidateOptions& o) {
                       waivers_of(o.registry, plugin.id, plugin.version, plugin.source_digest),
                       utc_today());
         stage_run.passed = all_pass(results);
-        const ValidationStage now = current_stage(o, plugin);
+        const ValidationStage now = current_stage(registry.view(), o, plugin);
         if (!stage_run.passed) {
             stage_run.note = "a check failed: nothing recorded";
         } else if (partial) {
@@ -474,14 +394,13 @@ int run_validate(const ValidateOptions& o) {
                     ? fmt::format(" (acetate-harness review {} --reviewer NAME --notes TEXT)",
                                   o.plugin.string())
                     : "");
-        } else if (auto same =
-                       merging ? Result<std::string>(plugin.binary_sha256) : file_sha256(o.plugin);
+        } else if (auto same = file_sha256(o.plugin);
                    !same || same.value() != plugin.binary_sha256) {
             // The file changed during the run: the cases may have run another binary.
             stage_run.note = "passed, but not recorded: the plugin file changed during the run";
             stage_run.passed = false;
             recording_failed = true;
-        } else if (auto r = record(o, plugin, stage, results,
+        } else if (auto r = record(registry, o, plugin, stage, results,
                                    fs::absolute(o.report_directory / "report.json").string(),
                                    companions);
                    !r) {
@@ -521,14 +440,22 @@ int run_validate(const ValidateOptions& o) {
     bool passed = alpha_cases.empty() || try_stage(ValidationStage::AlphaTested, alpha_cases, {});
     if (passed && o.up_to >= ValidationStage::Integrated) {
         std::vector<std::string> notes;
-        auto registry = Registry::load(o.registry);
+        Registry verified = registry.view();
         std::vector<CompanionPlugin> companions;
         // A companion is loaded into this process: only one whose sign-offs hold.
-        if (registry) registry->verify_sign_offs(SignatureVerifier(o.allowed_signers));
-        if (registry && !merging)
-            companions = find_companions(*registry, plugin, o.plugin_paths, notes);
+        verified.verify_sign_offs(SignatureVerifier(o.allowed_signers));
+        if (!merging) companions = find_companions(verified, plugin, o.plugin_paths, notes);
         for (const ShardResult& r : shards)  // merging: the companions the shards ran with
             if (r.stage == ValidationStage::Integrated) companions = r.spec.companions;
+        // ... each of which must be what this registry holds as integrated, sign-offs verified:
+        // a result file cannot vouch for a library.
+        for (const CompanionPlugin& c : companions)
+            if (merging &&
+                verified.binary_stage(c.id, c.binary_sha256) < ValidationStage::Integrated)
+                return fail_run(fmt::format(
+                    "merge: the shards ran beside {} (SHA-256 {}), which {} does not hold as "
+                    "INTEGRATED or VALIDATED",
+                    c.id, c.binary_sha256.substr(0, 12), o.registry.string()));
         for (const std::string& note : notes) std::printf("note: %s\n", note.c_str());
         std::printf("integration: with %zu other integrated plugin%s%s\n", companions.size(),
                     companions.size() == 1 ? "" : "s", companions.empty() ? " (none yet)" : "");
@@ -537,7 +464,7 @@ int run_validate(const ValidateOptions& o) {
         if (!cases.empty())
             passed = try_stage(ValidationStage::Integrated, cases, companions) && passed;
         if (passed && !partial) {
-            auto imported = import_committed(o, plugin);
+            auto imported = import_committed(registry, o, plugin);
             if (!imported) return fail_run(imported.error().message);
             for (const std::string& line : imported.value()) std::printf("%s\n", line.c_str());
         }
@@ -551,8 +478,22 @@ int run_validate(const ValidateOptions& o) {
                 fmt::format("{}: case {} is not in the plan of this run (strictness "
                             "{}, seed {})",
                             r.file.string(), r.spec.id, o.strictness, o.seed));
-    report.stage_after = to_string(current_stage(o, plugin));
-    report.history = history_of(o, plugin);
+    // Not refused: what the run recorded is written now, in one update.
+    Registry after = registry.view();
+    if (auto committed = registry.commit(); !committed) {
+        for (StageRun& s : report.stages)
+            if (s.recorded) {
+                s.recorded = false;
+                s.passed = false;
+                s.note = "passed, but recording failed: " + committed.error().message;
+            }
+        recording_failed = true;
+        std::fprintf(stderr, "acetate-harness: %s\n", committed.error().message.c_str());
+        auto on_disk = Registry::load(o.registry);
+        after = on_disk ? std::move(on_disk).value() : Registry();
+    }
+    report.stage_after = to_string(current_stage(after, o, plugin));
+    report.history = history_of(after, plugin);
     print_summary(report);
     std::printf("\n%s %s: %s -> %s; %s\n", plugin.id.c_str(), plugin.version.c_str(),
                 report.stage_before.c_str(), report.stage_after.c_str(),

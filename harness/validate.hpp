@@ -15,6 +15,9 @@
 namespace acetate::harness {
 
 inline constexpr const char* kHarnessVersion = "acetate-harness 0.1.0";
+// The strictness a run takes (--strictness); the default is the registry's kDefaultStrictness.
+inline constexpr int kMinStrictness = 1;
+inline constexpr int kMaxStrictness = 10;
 // The exit status of a child that could not run its case for reasons of the harness or the
 // machine (an unreadable case file, no Vulkan device); any other non-zero status is the
 // plugin's doing and reported as CRASH.
@@ -48,6 +51,10 @@ struct ValidateOptions {
     // and records the results read from merge_from instead of running cases.
     bool list_cases = false;
     std::optional<std::filesystem::path> out;
+    // With --out: who signs each result (--runner, --runner-key; shard.hpp). merge verifies
+    // the signatures against the allowed signers in the case-result namespace.
+    std::string runner;
+    std::optional<std::filesystem::path> runner_key;
     std::vector<std::filesystem::path> merge_from;
     std::vector<std::filesystem::path> plugin_paths;  // where integrated companions are found
     std::filesystem::path self;                       // this executable, for the children
@@ -60,8 +67,10 @@ int run_validate(const ValidateOptions& options);
 // do not depend on them). Returns the exit status.
 int run_list_cases(const ValidateOptions& options);
 
-// What the plugin declares, read in this process (the `describe` child does this).
-Result<PluginInfo> describe_plugin(const std::filesystem::path& file);
+// What the plugin declares, read in this process (the `describe` child does this). With
+// `required_sha256`, a file whose bytes hash otherwise is refused before it is loaded.
+Result<PluginInfo> describe_plugin(const std::filesystem::path& file,
+                                   const std::string& required_sha256 = {});
 // The same in a child process, so a crashing entry point is a clean error here.
 Result<PluginInfo> describe_in_child(const std::filesystem::path& self,
                                      const std::filesystem::path& plugin,

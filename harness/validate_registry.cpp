@@ -19,7 +19,36 @@ std::map<std::string, uint64_t> verdict_counts(const std::vector<CaseResult>& re
 
 }  // namespace
 
-Result<void> record(const ValidateOptions& o, const PluginInfo& plugin, ValidationStage stage,
+Result<RegistryTransaction> RegistryTransaction::open(fs::path file) {
+    auto loaded = Registry::load(file);  // a missing file: nothing recorded yet
+    if (!loaded) return loaded.error();
+    RegistryTransaction t;
+    t.file_ = std::move(file);
+    t.view_ = std::move(loaded).value();
+    return t;
+}
+
+Result<void> RegistryTransaction::apply(std::function<Result<void>(Registry&)> change) {
+    Registry changed = view_;
+    ACETATE_TRY(change(changed));
+    view_ = std::move(changed);
+    changes_.push_back(std::move(change));
+    return {};
+}
+
+Result<void> RegistryTransaction::commit() const {
+    if (changes_.empty()) return {};
+    return Registry::update(
+        file_,
+        [&](Registry& r) -> Result<void> {
+            for (const auto& change : changes_) ACETATE_TRY(change(r));
+            return {};
+        },
+        registry_markdown_path(file_));
+}
+
+Result<void> record(RegistryTransaction& registry, const ValidateOptions& o,
+                    const PluginInfo& plugin, ValidationStage stage,
                     const std::vector<CaseResult>& results, const std::string& report,
                     const std::vector<CompanionPlugin>& companions) {
     StageEvidence evidence;
@@ -27,6 +56,7 @@ Result<void> record(const ValidateOptions& o, const PluginInfo& plugin, Validati
     evidence.counts = verdict_counts(results);
     evidence.report = report;
     evidence.strictness = o.strictness;
+    evidence.seed = o.seed;
     const uint64_t waived = evidence.counts.count("WAIVED") ? evidence.counts.at("WAIVED") : 0;
     evidence.summary = fmt::format("{} cases at strictness {}, seed {}: all passed{}",
                                    results.size(), o.strictness, o.seed,
@@ -37,16 +67,14 @@ Result<void> record(const ValidateOptions& o, const PluginInfo& plugin, Validati
         evidence.summary += ids.empty() ? "; no other integrated plugin yet"
                                         : fmt::format("; with {}", fmt::join(ids, ", "));
     }
-    return Registry::update(
-        o.registry,
-        [&](Registry& r) {
-            return r.record_evidence(plugin.id, plugin.version, plugin.binary_sha256,
-                                     plugin.source_digest, stage, evidence);
-        },
-        registry_markdown_path(o.registry));
+    return registry.apply([plugin, stage, evidence](Registry& r) {
+        return r.record_evidence(plugin.id, plugin.version, plugin.binary_sha256,
+                                 plugin.source_digest, stage, evidence);
+    });
 }
 
-Result<std::vector<std::string>> import_committed(const ValidateOptions& o,
+Result<std::vector<std::string>> import_committed(RegistryTransaction& registry,
+                                                  const ValidateOptions& o,
                                                   const PluginInfo& plugin) {
     if (!o.signoffs) return std::vector<std::string>{};
     auto signoffs = Registry::load(*o.signoffs);
@@ -57,13 +85,14 @@ Result<std::vector<std::string>> import_committed(const ValidateOptions& o,
     if (const RegistryEntry* committed = signoffs->find(plugin.id, plugin.version))
         for (const auto& [what, why] : committed->distrusted)
             lines.push_back(fmt::format("not imported from {}: {}", o.signoffs->string(), why));
-    ACETATE_TRY(Registry::update(
-        o.registry,
-        [&](Registry& r) -> Result<void> {
-            imported = import_signoffs(r, signoffs.value(), plugin, verifier);
-            return {};
-        },
-        registry_markdown_path(o.registry)));
+    Registry preview = registry.view();
+    imported = import_signoffs(preview, signoffs.value(), plugin, verifier);
+    if (!imported.empty())
+        ACETATE_TRY(registry.apply(
+            [committed = signoffs.value(), plugin, verifier](Registry& r) -> Result<void> {
+                import_signoffs(r, committed, plugin, verifier);
+                return {};
+            }));
     for (const std::string& line : imported)
         lines.push_back(
             line.rfind("nothing: ", 0) == 0
@@ -72,11 +101,9 @@ Result<std::vector<std::string>> import_committed(const ValidateOptions& o,
     return lines;
 }
 
-std::vector<HistoryLine> history_of(const ValidateOptions& o, const PluginInfo& plugin) {
+std::vector<HistoryLine> history_of(const Registry& registry, const PluginInfo& plugin) {
     std::vector<HistoryLine> lines;
-    auto registry = Registry::load(o.registry);
-    if (!registry) return lines;
-    const RegistryEntry* e = registry->find(plugin.id, plugin.version);
+    const RegistryEntry* e = registry.find(plugin.id, plugin.version);
     if (!e) return lines;
     if (e->review)
         lines.push_back({e->review->at, "review (REVIEWED)", e->review->by, e->review->notes});
@@ -92,11 +119,11 @@ std::vector<HistoryLine> history_of(const ValidateOptions& o, const PluginInfo& 
     return lines;
 }
 
-ValidationStage current_stage(const ValidateOptions& o, const PluginInfo& p) {
-    auto registry = Registry::load(o.registry);
-    if (!registry) return ValidationStage::Unvalidated;
-    registry->verify_sign_offs(SignatureVerifier(o.allowed_signers), entry_of(p.id, p.version));
-    return registry->effective_stage(p.id, p.version, p.binary_sha256, p.source_digest);
+ValidationStage current_stage(const Registry& registry, const ValidateOptions& o,
+                              const PluginInfo& p) {
+    Registry verified = registry;
+    verified.verify_sign_offs(SignatureVerifier(o.allowed_signers), entry_of(p.id, p.version));
+    return verified.effective_stage(p.id, p.version, p.binary_sha256, p.source_digest);
 }
 
 std::vector<std::string> import_signoffs(Registry& registry, const Registry& signoffs,

@@ -81,7 +81,8 @@ struct StageEvidence {
     std::map<std::string, uint64_t> counts;  // verdict -> cases: PASS, WARN, SKIP, ...
     std::string report;                      // where the run's report is; may be empty
     std::string binary_sha256;               // what it ran on; set by record_evidence
-    int strictness = 0;  // the run's --strictness; 0: not recorded (an older harness)
+    int strictness = 0;            // the run's --strictness; 0: not recorded (an older harness)
+    std::optional<uint64_t> seed;  // the run's --seed; none: not recorded (an older harness)
     bool operator==(const StageEvidence&) const = default;
 };
 
@@ -96,6 +97,9 @@ struct RegistryEntry {
     // Filled by Registry::verify_sign_offs, never stored: for "review" and "promotion", why
     // that sign-off was dropped (its signature is missing, wrong, or made by a key not allowed).
     std::map<std::string, std::string> distrusted;
+    // Filled by Registry::verify_sign_offs, never stored: the review was signed by the
+    // plugin's own author (a principal the author scopes list for this id; ssh_signature.hpp).
+    bool review_by_author = false;
 
     // The highest stage whose records (and all earlier ones) bind to this binary and source.
     ValidationStage stage_for(std::string_view binary_sha256, std::string_view source_digest) const;

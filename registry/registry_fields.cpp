@@ -8,6 +8,8 @@
 #include <cstring>
 #include <regex>
 
+#include "core/number_text.hpp"
+
 namespace acetate::registry_fields {
 
 namespace fs = std::filesystem;
@@ -32,15 +34,15 @@ std::optional<std::array<uint32_t, 3>> parse_version(std::string_view s) {
     return out;
 }
 
+// The day of either goes through the one reader of days (core/number_text.hpp), so a day that
+// does not exist (2026-02-30, 2100-02-29) is refused here as it is on the command line.
 bool is_timestamp(const std::string& s) {
-    static const std::regex pattern(
-        "\\d{4}-(0[1-9]|1[0-2])-(0[1-9]|[12]\\d|3[01])T([01]\\d|2[0-3]):[0-5]\\d:[0-5]\\dZ");
-    return std::regex_match(s, pattern);
+    static const std::regex pattern("\\d{4}-\\d{2}-\\d{2}T([01]\\d|2[0-3]):[0-5]\\d:[0-5]\\dZ");
+    return std::regex_match(s, pattern) && number_text::day(s.substr(0, 10), "").ok();
 }
 
 bool is_day(const std::string& s) {
-    static const std::regex pattern("\\d{4}-(0[1-9]|1[0-2])-(0[1-9]|[12]\\d|3[01])");
-    return std::regex_match(s, pattern);
+    return number_text::day(s, "").ok();
 }
 
 bool is_blank(std::string_view s) {

@@ -68,16 +68,20 @@ Waiver read_waiver(const json& j, const std::string& path) {
 StageEvidence read_evidence(const json& j, const std::string& path) {
     expect_object(j, path,
                   {"at", "harness_version", "summary", "counts", "report", "binary_sha256"},
-                  {"strictness"});
-    StageEvidence ev{timestamp(j, path, "at"), nonempty(j, path, "harness_version"),
-                     text(j, path, "summary"), {},
-                     text(j, path, "report"),  hex64(j, path, "binary_sha256")};
+                  {"strictness", "seed"});
+    StageEvidence ev;
+    ev.at = timestamp(j, path, "at");
+    ev.harness_version = nonempty(j, path, "harness_version");
+    ev.summary = text(j, path, "summary");
+    ev.report = text(j, path, "report");
+    ev.binary_sha256 = hex64(j, path, "binary_sha256");
     if (j.contains("strictness")) {
         const json& s = j["strictness"];
         if (!s.is_number_integer() || s.get<int64_t>() < 1 || s.get<int64_t>() > 10)
             fail(field(path, "strictness"), "must be an integer from 1 to 10");
         ev.strictness = s.get<int>();
     }
+    if (j.contains("seed")) ev.seed = unsigned_integer(j, path, "seed");
     const std::string counts_path = field(path, "counts");
     const json& counts = j.at("counts");
     if (!counts.is_object()) fail(counts_path, "must be an object of verdict: count");
@@ -176,6 +180,7 @@ ordered_json write_evidence(const StageEvidence& ev) {
                    {"summary", ev.summary}, {"counts", counts},
                    {"report", ev.report},   {"binary_sha256", ev.binary_sha256}};
     if (ev.strictness > 0) j["strictness"] = ev.strictness;
+    if (ev.seed) j["seed"] = *ev.seed;
     return j;
 }
 

@@ -90,6 +90,7 @@ std::string render_registry_markdown(const Registry& registry, std::string_view 
                                  ev->summary.empty() ? "" : ev->summary + "; ", counts_text(*ev)));
             if (!ev->report.empty()) out += cell(fmt::format("; report `{}`", ev->report));
             if (ev->strictness > 0) out += fmt::format("; strictness {}", ev->strictness);
+            if (ev->seed) out += fmt::format(", seed {}", *ev->seed);
             out += "\n";
         };
         sign_off("Reviewed", e.review);

@@ -33,16 +33,36 @@ std::function<bool(const RegistryEntry&)> entry_of(std::string_view id, std::str
 
 void Registry::verify_sign_offs(const SignatureVerifier& verifier,
                                 const std::function<bool(const RegistryEntry&)>& which) {
+    // Who is an outside author, read once; scopes that cannot be read trust nothing, as an
+    // unreadable revocation list does.
+    auto scopes = verifier.read_author_scopes();
     for (RegistryEntry& e : entries_) {
         if (which && !which(e)) continue;
+        auto drop = [&](const char* what, std::optional<SignOff>& s, const std::string& why) {
+            e.distrusted[what] = fmt::format("the {} by {} is not trusted: {}", what, s->by, why);
+            s.reset();
+        };
         auto check = [&](const char* what, std::optional<SignOff>& s, ValidationStage grants) {
             if (!s) return;
+            if (!scopes)
+                return drop(what, s, "its signature cannot be checked: " + scopes.error().message);
             auto verified = verifier.verify(s->by, sign_off_statement(e.id, e.version, grants, *s),
                                             s->signature);
-            if (verified) return;
-            e.distrusted[what] = fmt::format("the {} by {} is not trusted: its signature {}", what,
-                                             s->by, verified.error().message);
-            s.reset();
+            if (!verified) return drop(what, s, "its signature " + verified.error().message);
+            if (scopes->is_author(s->by) && !scopes->covers(s->by, e.id))
+                return drop(
+                    what, s,
+                    fmt::format("{} is an outside author who may sign for {} only ({})", s->by,
+                                scopes->patterns_of(s->by), verifier.author_scopes().string()));
+            // A plugin's own author vouches for its code, never for its promotion: VALIDATED
+            // needs an independent maintainer's signature.
+            if (grants == ValidationStage::Validated && scopes->covers(s->by, e.id))
+                return drop(what, s,
+                            fmt::format("{} is the plugin's own author; VALIDATED needs a "
+                                        "promotion by an independent maintainer",
+                                        s->by));
+            if (grants == ValidationStage::Reviewed)
+                e.review_by_author = scopes->covers(s->by, e.id);
         };
         check("review", e.review, ValidationStage::Reviewed);
         check("promotion", e.promotion, ValidationStage::Validated);

@@ -398,9 +398,10 @@ TEST_F(HostPolicy, TheLoaderAsksBeforeOpening) {
             asked.emplace_back(id, file);
             return make_error(ErrorCode::InvalidInput, "refused by the test");
         });
-    // A file that is not a library at all: opening it would fail with dlopen's message.
+    // A library under another name: refused, it is never opened (dlopen'ed). (A file that is
+    // not a library at all is refused before the hook, as the loader's own checks find it.)
     const fs::path junk = dir_ / "junk.so";
-    test::write_text(junk, "not an ELF file");
+    fs::copy_file(fs::path(ACETATE_PLUGIN_DIR) / "bloom.so", junk);
     auto by_file = loader.load_file(junk);
     ASSERT_FALSE(by_file);
     EXPECT_EQ(by_file.error().message, "refused by the test");
@@ -447,6 +448,31 @@ TEST_F(HostPolicy, TheFileLoadedIsTheFileChecked) {
     EXPECT_EQ(loaded.value()->file, plugin_file());  // named as the user knows it
     EXPECT_EQ(loaded.value()->descriptor.id, "acetate.lighting");
     EXPECT_EQ(test::read_file(plugin_file()), "not an ELF file");  // the swap did happen
+}
+
+// The same, for a file rewritten in place (same inode) after the check: held open, the file
+// would be mapped with the new bytes; the sealed copy the policy judged is what loads, and
+// its digest is the one the loader reports.
+TEST_F(HostPolicy, AFileRewrittenInPlaceAfterTheCheckIsNotWhatLoads) {
+    PluginLoader loader({plugins_});
+    const auto expected = file_sha256(plugin_file());
+    ASSERT_TRUE(expected);
+    std::string checked;
+    loader.set_admission(
+        [&](const std::string&, const fs::path& file, const fs::path& contents) -> Result<void> {
+            auto sha = file_sha256(contents);
+            if (!sha) return sha.error();
+            checked = sha.value();
+            std::ofstream rewrite(file, std::ios::binary | std::ios::trunc);  // same inode
+            rewrite << "not an ELF file";
+            return {};
+        });
+    auto loaded = loader.load("acetate.lighting");
+    ASSERT_TRUE(loaded) << loaded.error().message;
+    EXPECT_EQ(checked, expected.value());
+    EXPECT_EQ(loaded.value()->binary_sha256, expected.value());
+    EXPECT_EQ(loaded.value()->descriptor.id, "acetate.lighting");
+    EXPECT_EQ(test::read_file(plugin_file()), "not an ELF file");  // rewritten in place
 }
 
 // Two plugins under a policy in one process: each is the library it names (the dynamic

@@ -79,6 +79,24 @@ TEST(HarnessFuzz, FindsAndShrinksAPlantedFailureWithinItsTime) {
     EXPECT_EQ(again.code, 1) << again.describe();
     EXPECT_TRUE(contains(again.out, "CRASH: the plugin exited with status 7 during the case"))
         << again.describe();
+
+    // A case file cannot make the command load a library of its choosing: one naming a
+    // companion is refused in one line, before any case runs.
+    json named = shrunk;
+    named["companions"] = json::array({{{"id", "org.example.other"},
+                                        {"file", harness_plugin("well_behaved").string()},
+                                        {"scope", "floor"},
+                                        {"binary_sha256", std::string(64, 'a')}}});
+    const fs::path named_file = test::write_text(dir / "named.json", named.dump(2));
+    const test::CommandResult refused = fuzz(dir, harness_plugin("exits_in_case"),
+                                             "--reproduce " + shell_quote(named_file.string()));
+    EXPECT_EQ(refused.code, 1) << refused.describe();
+    const auto lines = test::nonempty_lines(refused.err);
+    ASSERT_EQ(lines.size(), 1u) << refused.describe();
+    EXPECT_TRUE(
+        contains(lines[0], named_file.string() + ": companions: a fuzz case runs the plugin alone"))
+        << lines[0];
+    EXPECT_FALSE(contains(refused.out, "CRASH")) << "no case ran";
 }
 
 TEST(HarnessFuzz, ACorrectPluginRunsItsTimeWithoutAFailure) {

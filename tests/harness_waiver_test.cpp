@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "test_files.hpp"
 #include "test_signer.hpp"
@@ -87,8 +88,15 @@ TEST_F(HarnessWaivers, AWaivedCheckReadsWaivedAndAnExpiredWaiverFails) {
                     "\"process\" is not a check a waiver may name");
     expect_one_line(waive("non-negative --reason r --until 2020-01-01 --by pat@example.org"),
                     "waiver refused: --until 2020-01-01 is already past");
-    expect_one_line(waive("non-negative --reason r --until 31/12/2099 --by pat@example.org"),
-                    "is not a day (YYYY-MM-DD)");
+    {  // A flag's value the one reader of numbers and days refuses: a usage error, exit 2.
+        const test::CommandResult run =
+            waive("non-negative --reason r --until 31/12/2099 --by pat@example.org");
+        EXPECT_EQ(run.code, 2) << run.describe();
+        EXPECT_EQ(test::nonempty_lines(run.err),
+                  std::vector<std::string>{
+                      "acetate-harness: --until: must be a day YYYY-MM-DD, got \"31/12/2099\""})
+            << run.describe();
+    }
     expect_one_line(waive("non-negative --reason ' ' --until 2099-12-31 --by pat@example.org"),
                     "the reason is empty");
     EXPECT_FALSE(contains(test::read_file(registry()), "waivers"));

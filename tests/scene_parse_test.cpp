@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <chrono>
 #include <climits>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <future>
@@ -517,4 +518,24 @@ TEST_F(SceneParseTest, ExistingPathLongerThanPathMaxIsNotFileNotFound) {
 }
 
 }  // namespace
+// The sun at the edges the format allows: the direction is exact where the angle is a
+// multiple of 90 degrees (radians are not: cos(pi / 2) is 6.1e-17), so an effect that tests for
+// a sun overhead or on an axis sees exactly that.
+TEST(SunDirection, IsExactAtMultiplesOfNinetyDegrees) {
+    using V = std::array<float, 3>;
+    for (float azimuth : {0.0f, 30.0f, 90.0f, 217.5f, 359.0f})
+        EXPECT_EQ((SunDesc{azimuth, 90}.direction()), (V{0, 0, 1})) << azimuth;
+    EXPECT_EQ((SunDesc{0, 0}.direction()), (V{1, 0, 0}));
+    EXPECT_EQ((SunDesc{90, 0}.direction()), (V{0, 1, 0}));
+    EXPECT_EQ((SunDesc{180, 0}.direction()), (V{-1, 0, 0}));
+    EXPECT_EQ((SunDesc{270, 0}.direction()), (V{0, -1, 0}));
+    EXPECT_EQ((SunDesc{360, 0}.direction()), (V{1, 0, 0}));
+    // Elsewhere, the ordinary unit vector.
+    const V d = SunDesc{30, 40}.direction();
+    const double pi = 3.14159265358979323846;
+    EXPECT_NEAR(d[0], std::cos(40 * pi / 180) * std::cos(30 * pi / 180), 1e-7);
+    EXPECT_NEAR(d[1], std::cos(40 * pi / 180) * std::sin(30 * pi / 180), 1e-7);
+    EXPECT_NEAR(d[2], std::sin(40 * pi / 180), 1e-7);
+}
+
 }  // namespace acetate

@@ -112,6 +112,16 @@ TEST_F(Sdk11Test, ProbeReadsWhatTheHostGaveIt) {
     // Away from row 0 the floor is unchanged.
     EXPECT_EQ(std::vector<float>(out->at(5, 5), out->at(5, 5) + 4),
               (std::vector<float>{0.1f, 0.2f, 0.3f, 1.0f}));
+
+    // A time just under a whole second, where the fraction in double rounds to 1.0f: the host
+    // keeps it below 1, as it keeps the phases, for effects that take it as [0, 1).
+    ASSERT_TRUE(compositor->render(1, 2.99999999));
+    auto edge = compositor->read_output();
+    ASSERT_TRUE(edge) << edge.error().message;
+    EXPECT_EQ(edge->at(2, 0)[1], 0x1.fffffep-1f);
+    EXPECT_EQ(edge->at(2, 0)[2], 2.0f);
+    EXPECT_LT(edge->at(2, 0)[0], 1.0f);
+    EXPECT_EQ(float(2.99999999 - 2.0), 1.0f) << "the case must be one a plain cast gets wrong";
 }
 
 TEST_F(Sdk11Test, SceneErrorsNameTheField) {

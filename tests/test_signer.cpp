@@ -43,11 +43,14 @@ TestSigner make_signer() {
     s.key = make_key(folder / "maintainer", "acetate test maintainer");
     s.public_key = folder / "maintainer.pub";
     s.unlisted_key = make_key(folder / "stranger", "a key nobody allowed");
+    s.runner_key = make_key(folder / "runner", "acetate test shard runner");
     s.allowed_signers = folder / "allowed_signers";
     std::ofstream out(s.allowed_signers);
     out << read_file(fs::path(ACETATE_SOURCE_VALIDATION_DIR) / "allowed_signers")
         << kTestSignerNames << " namespaces=\"" << kSignatureNamespace << "\" "
-        << public_key_text(s.public_key) << "\n";
+        << public_key_text(s.public_key) << "\n"
+        << kTestRunnerName << " namespaces=\"" << kCaseResultNamespace << "\" "
+        << public_key_text(fs::path(s.runner_key.string() + ".pub")) << "\n";
     return s;
 }
 
@@ -60,7 +63,9 @@ const TestSigner& test_signer() {
 
 std::string signer_environment() {
     return "ACETATE_ALLOWED_SIGNERS=" + shell_quote(test_signer().allowed_signers.string()) +
-           " ACETATE_SIGNING_KEY=" + shell_quote(test_signer().key.string());
+           " ACETATE_SIGNING_KEY=" + shell_quote(test_signer().key.string()) +
+           " ACETATE_RUNNER=" + shell_quote(kTestRunnerName) +
+           " ACETATE_RUNNER_KEY=" + shell_quote(test_signer().runner_key.string());
 }
 
 void sign(SignOff& s, const std::string& id, const std::string& version, ValidationStage stage,

@@ -15,7 +15,12 @@ struct TestSigner {
     std::filesystem::path public_key;       // key.pub
     std::filesystem::path allowed_signers;  // the committed lines, then this key's
     std::filesystem::path unlisted_key;     // a second key no allowed-signers line names
+    // A shard runner's key: listed for kTestRunnerName in the case-result namespace only, so
+    // it signs results and cannot sign a sign-off.
+    std::filesystem::path runner_key;
 };
+
+inline constexpr const char* kTestRunnerName = "runner@example.org";
 
 // The names the test key signs for.
 inline constexpr const char* kTestSignerNames =
@@ -24,7 +29,8 @@ inline constexpr const char* kTestSignerNames =
 // Made on first use in a private temporary folder, removed when the process exits.
 const TestSigner& test_signer();
 
-// "ACETATE_ALLOWED_SIGNERS='…' ACETATE_SIGNING_KEY='…'" for a command line.
+// "ACETATE_ALLOWED_SIGNERS='…' ACETATE_SIGNING_KEY='…' ACETATE_RUNNER='…'
+// ACETATE_RUNNER_KEY='…'" for a command line.
 std::string signer_environment();
 
 // Signs `s` as granting `stage` to the plugin, with `key` (the test key by default).

@@ -7,8 +7,11 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <set>
 
+#include "../flag_values.hpp"
+#include "bench_outputs.hpp"
 #include "bench_runner.hpp"
 #include "core/atomic_file.hpp"
 #include "hard_cases.hpp"
@@ -151,23 +154,31 @@ int main(int argc, char** argv) {
                    "comma-separated plugin ids (default: every plugin named)");
     app.add_option("--presets", presets, "comma-separated presets")->capture_default_str();
     app.add_option("--formats", formats, "comma-separated target formats")->capture_default_str();
-    app.add_option("--frames", options.frames, "timed frames per configuration, after the first")
-        ->check(CLI::Range(1u, 10000u))
-        ->capture_default_str();
-    app.add_option("--time", options.time, "animation time of every frame (seconds)")
-        ->capture_default_str();
-    app.add_option("--floor", floor, "active floor (default: the scene's)");
+    // Numbers go through the one reader (apps/flag_values.hpp): finite, in range, no wrap.
+    flags::add_number(&app, "--frames", options.frames, 1, 10000,
+                      "timed frames per configuration, after the first");
+    flags::add_number(&app, "--time", options.time, -flags::kMaxTimeSeconds, flags::kMaxTimeSeconds,
+                      "animation time of every frame (seconds)");
+    flags::add_number(&app, "--floor", floor, 0, UINT32_MAX, "active floor (default: the scene's)");
     app.add_option("--html", html, "write the report (index.html, heat maps, charts) here");
     app.add_option("--json", json, "write the results as JSON here");
     // One folder per occurrence, so the option never swallows the scene files after it.
     app.add_option("--plugin-path", plugin_paths, "extra plugin folder (repeatable)")
         ->allow_extra_args(false);
-    app.add_option("--warn", options.thresholds.warn, "warn threshold (absolute, linear)")
-        ->capture_default_str();
-    app.add_option("--fail", options.thresholds.fail, "fail threshold (absolute, linear)")
-        ->capture_default_str();
+    flags::add_number(&app, "--warn", options.thresholds.warn, 0.0,
+                      std::numeric_limits<double>::max(), "warn threshold (absolute, linear)");
+    flags::add_number(&app, "--fail", options.thresholds.fail, 0.0,
+                      std::numeric_limits<double>::max(), "fail threshold (absolute, linear)");
     app.add_flag("--no-peers", no_peers, "skip the oiiotool flattening");
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ValidationError& e) {
+        // A value a flag refuses: the reader's one line, without CLI11's second.
+        std::fprintf(stderr, "acetate-bench: %s\n", e.what());
+        return 2;
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
 
     if (hard_cases) return run_hard_case_table(split_list(plugins), plugin_paths);
     if (scaling) return run_scaling_study(options.frames, plugin_paths);
@@ -181,6 +192,12 @@ int main(int argc, char** argv) {
     options.floor = floor;
     for (const auto& p : plugin_paths) options.plugin_paths.emplace_back(p);
     options.peers = !no_peers;
+    // Outputs never replace inputs: checked before anything is created or measured.
+    if (auto spared =
+            check_bench_outputs(options, json ? std::optional<fs::path>(*json) : std::nullopt,
+                                html ? std::optional<fs::path>(*html) : std::nullopt);
+        !spared)
+        return fail(spared.error().message);
     if (html) {
         std::error_code ec;
         fs::create_directories(*html, ec);
@@ -205,9 +222,7 @@ int main(int argc, char** argv) {
         std::set<std::pair<std::string, std::string>> charts;
         for (const ConfigResult& c : results->configs) charts.insert({c.scene, c.plugin});
         for (const auto& [scene, plugin] : charts) {
-            const fs::path file =
-                fs::path(*html) /
-                fmt::format("speed-error-{}-{}.svg", fs::path(scene).stem().string(), plugin);
+            const fs::path file = fs::path(*html) / chart_name(scene, plugin);
             if (auto written =
                     write_file_atomically(file, speed_error_svg(results.value(), scene, plugin));
                 !written)

@@ -10,21 +10,28 @@
 #include <CLI/CLI.hpp>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <thread>
 
+#include "../flag_values.hpp"
 #include "bless_command.hpp"
 #include "case_runner.hpp"
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
+#include "core/json_fields.hpp"
+#include "core/number_text.hpp"
+#include "core/output_paths.hpp"
 #include "core/strict_json.hpp"
 #include "fuzz.hpp"
 #include "registry.hpp"
 #include "registry_commands.hpp"
 #include "registry_location.hpp"
 #include "shard.hpp"
+#include "ssh_signature.hpp"
 #include "validate.hpp"
 
 namespace {
@@ -117,6 +124,82 @@ int run_case_command(const fs::path& plugin_info, const fs::path& case_file, con
     return 0;
 }
 
+// --duration: seconds, or a number with s, m or h. The number goes through the one reader
+// (finite, no sign '+', nothing after the unit); the wording of a refusal is the flag's own.
+constexpr double kMaxFuzzSeconds = 365 * 24 * 3600.0;  // a year: longer is a typo, not a plan
+Result<double> read_duration(const std::string& text) {
+    const char unit = text.empty() ? '\0' : text.back();
+    const double scale = unit == 'm' ? 60 : unit == 'h' ? 3600 : 1;
+    const bool has_unit = unit == 's' || unit == 'm' || unit == 'h';
+    auto number = number_text::finite_number(
+        std::string_view(text).substr(0, text.size() - (has_unit ? 1 : 0)), "--duration", 0,
+        std::numeric_limits<double>::max());
+    if (number && *number > 0 && *number * scale <= kMaxFuzzSeconds) return *number * scale;
+    if (number && *number > 0)
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("--duration: must be at most {} seconds (a year), got {}",
+                                      kMaxFuzzSeconds, text));
+    return make_error(ErrorCode::InvalidInput,
+                      fmt::format("--duration: expected seconds or a number with s, m or h "
+                                  "(e.g. 90s, 10m), got {}",
+                                  json_fields::json_quoted(text)));
+}
+
+// Every regular file under `folder` (the golden references, a shard's results/), each an
+// input of the run. Symbolic links to folders are not followed: a loop cannot hang it.
+void add_files_under(std::vector<RunFile>& inputs, const fs::path& folder,
+                     const std::string& role) {
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+        if (it->is_regular_file(ec)) inputs.push_back({it->path(), role});
+}
+
+// What validate and merge read besides the plugin: the registry, the keys, the sign-offs and
+// the golden references.
+std::vector<RunFile> recording_inputs(const ValidateOptions& o) {
+    std::vector<RunFile> in{{o.registry, "the registry"},
+                            {o.allowed_signers, "the allowed signers"},
+                            {o.allowed_signers.parent_path() / "revoked_keys", "the revoked keys"}};
+    if (o.signoffs) in.push_back({*o.signoffs, "the sign-offs"});
+    add_files_under(in, o.references, "the golden references");
+    return in;
+}
+
+// Outputs never replace inputs (core/output_paths.hpp), checked before any work: the files a
+// flag names (--json, --junit, which must differ from each other too), then the files the run
+// writes in its report folder and beside the registry.
+Result<void> check_validate_outputs(const ValidateOptions& o, std::vector<RunFile> inputs) {
+    std::vector<RunFile> named,
+        written{{o.report_directory / "report.json", "--report"},
+                {o.report_directory / "index.html", "--report"},
+                {o.report_directory / "plugin.json", "--report"},
+                {registry_markdown_path(o.registry), "the registry's readable copy"}};
+    if (o.json_file) named.push_back({*o.json_file, "--json"});
+    if (o.junit_file) named.push_back({*o.junit_file, "--junit"});
+    ACETATE_TRY(check_outputs_spare_inputs(named, inputs));
+    return check_outputs_spare_inputs(written, inputs);
+}
+
+// A shard signs every result it writes (shard.hpp): its runner's name and key, from the flags
+// or the environment, and a trial signature before any case runs, so a missing, unreadable or
+// passphrase-locked key stops the shard at once rather than after its cases.
+Result<void> runner_identity(ValidateOptions& o) {
+    if (o.runner.empty())
+        if (const char* env = std::getenv("ACETATE_RUNNER"); env) o.runner = env;
+    if (!o.runner_key)
+        if (const char* env = std::getenv("ACETATE_RUNNER_KEY"); env && *env) o.runner_key = env;
+    if (o.runner.empty() || !o.runner_key)
+        return make_error(ErrorCode::InvalidInput,
+                          "--out: each result is signed by the runner that produced it: give "
+                          "--runner NAME and --runner-key FILE (or ACETATE_RUNNER and "
+                          "ACETATE_RUNNER_KEY); docs/cluster.md, \"Runner keys\"");
+    auto trial =
+        ssh_sign(*o.runner_key, "acetate-harness: trial signature\n", kCaseResultNamespace);
+    if (!trial)
+        return make_error(ErrorCode::InvalidInput, "--runner-key: " + trial.error().message);
+    return {};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -150,19 +233,19 @@ int main(int argc, char** argv) {
     v->add_option("--stage", stage_name, "Highest stage to run: alpha-tested | integrated")
         ->check(CLI::IsMember({"alpha-tested", "integrated"}))
         ->default_val("integrated");
-    v->add_option("--strictness", validate.strictness, "1-10: how many cases and seeds")
-        ->check(CLI::Range(1, 10))
-        ->default_val(5);
-    v->add_option("--seed", validate.seed, "Seed of every case's inputs and parameters")
-        ->default_val(1);
+    // Numbers, days and names go through the one reader (apps/flag_values.hpp): each
+    // refusal is one line, and nothing wraps ("--seed -1") or passes as NaN ("--timeout nan").
+    flags::add_number(v, "--strictness", validate.strictness, kMinStrictness, kMaxStrictness,
+                      "1-10: how many cases and seeds");
+    flags::add_number(v, "--seed", validate.seed, 0, UINT64_MAX,
+                      "Seed of every case's inputs and parameters");
     v->add_option("--report", report_flag, "Report folder (default ./harness-report/<plugin>)");
     v->add_option("--json", validate.json_file, "Also write the JSON report here");
     v->add_option("--junit", validate.junit_file,
                   "Also write JUnit XML here (one suite per stage, one test per case)");
-    v->add_option("--jobs", validate.jobs, "Cases run at once")->check(CLI::Range(1, 256));
-    v->add_option("--timeout", validate.timeout_seconds, "Seconds a case may take")
-        ->check(CLI::Range(1.0, 3600.0))
-        ->default_val(120);
+    flags::add_number(v, "--jobs", validate.jobs, 1, 256, "Cases run at once");
+    flags::add_number(v, "--timeout", validate.timeout_seconds, 1.0, 3600.0,
+                      "Seconds a case may take");
     v->add_option("--case", validate.only_cases,
                   "Run only this case (repeatable), e.g. to reproduce a failure; records nothing");
     v->add_flag("--list-cases", validate.list_cases,
@@ -171,6 +254,12 @@ int main(int argc, char** argv) {
     v->add_option("--out", validate.out,
                   "With --case: write each case's result to DIR/results/ for `merge`; record "
                   "nothing");
+    v->add_option("--runner", validate.runner,
+                  "With --out: the name the allowed signers list for --runner-key, signed into "
+                  "each result (default: $ACETATE_RUNNER)");
+    v->add_option("--runner-key", validate.runner_key,
+                  "With --out: the key that signs each result, allowed the namespace "
+                  "acetate-case-result (default: $ACETATE_RUNNER_KEY)");
     v->add_option("--plugin-path", validate.plugin_paths,
                   "Where to find the other integrated plugins (then the default search path)");
     v->add_option("--signoffs", signoffs_flag,
@@ -178,15 +267,14 @@ int main(int argc, char** argv) {
                   "installation's share/acetate/validation/signoffs.json)");
     v->add_flag("--no-signoffs", no_signoffs, "Import no committed sign-offs");
     bool shuffle = false;
-    v->add_option("--repeat", validate.repeat,
-                  "Run every case N times, each in a fresh process; a case whose verdict "
-                  "changes is FLAKY")
-        ->check(CLI::Range(1, 1000))
-        ->default_val(1);
+    flags::add_number(v, "--repeat", validate.repeat, 1, 1000,
+                      "Run every case N times, each in a fresh process; a case whose verdict "
+                      "changes is FLAKY");
     CLI::Option* shuffle_flag =
         v->add_flag("--shuffle", shuffle, "Run the cases (and their repeats) in random order");
-    v->add_option("--shuffle-seed", validate.shuffle_seed,
-                  "The random order's seed (implies --shuffle; printed by every shuffled run)")
+    flags::add_number(v, "--shuffle-seed", validate.shuffle_seed, 0, UINT64_MAX,
+                      "The random order's seed (implies --shuffle; printed by every shuffled "
+                      "run)")
         ->excludes(shuffle_flag);
 
     FuzzOptions fuzz;
@@ -198,11 +286,9 @@ int main(int argc, char** argv) {
     f->add_option("plugin", fuzz.plugin, "The plugin's shared library")->required();
     f->add_option("--duration", fuzz_duration, "How long to draw cases: 90s, 10m, 1h")
         ->default_val("10m");
-    f->add_option("--jobs", fuzz.jobs, "Cases run at once")->check(CLI::Range(1, 256));
-    f->add_option("--seed", fuzz.seed, "Seed of the drawn cases")->default_val(1);
-    f->add_option("--timeout", fuzz.timeout_seconds, "Seconds a case may take")
-        ->check(CLI::Range(1.0, 3600.0))
-        ->default_val(120);
+    flags::add_number(f, "--jobs", fuzz.jobs, 1, 256, "Cases run at once");
+    flags::add_number(f, "--seed", fuzz.seed, 0, UINT64_MAX, "Seed of the drawn cases");
+    flags::add_number(f, "--timeout", fuzz.timeout_seconds, 1.0, 3600.0, "Seconds a case may take");
     f->add_option("--report", fuzz_report, "Report folder (default ./harness-fuzz/<plugin>)");
     f->add_option("--reproduce", fuzz.reproduce, "Run only this case file (a shrunk case)");
 
@@ -211,14 +297,14 @@ int main(int argc, char** argv) {
     std::optional<fs::path> key_flag;
     CLI::App* r = app.add_subcommand("review", "Sign a review of the plugin's source (REVIEWED)");
     r->add_option("plugin", review_plugin)->required();
-    r->add_option("--reviewer", review.by,
-                  "Who reviewed the source: the name validation/allowed_signers lists your key "
-                  "under")
+    flags::add_name(r, "--reviewer", review.by,
+                    "Who reviewed the source: the name validation/allowed_signers lists your "
+                    "key under")
         ->required();
     r->add_option("--notes", review.notes, "What was reviewed")->required();
     CLI::App* p = app.add_subcommand("promote", "Sign the promotion INTEGRATED -> VALIDATED");
     p->add_option("plugin", promote_plugin)->required();
-    p->add_option("--by", promotion.by, "Who promotes it: the name your key is listed under")
+    flags::add_name(p, "--by", promotion.by, "Who promotes it: the name your key is listed under")
         ->required();
     p->add_option("--notes", promotion.notes, "Why");
     for (CLI::App* signing : {r, p})
@@ -231,8 +317,9 @@ int main(int argc, char** argv) {
     w->add_option("plugin", waive_plugin)->required();
     w->add_option("check", waive.check, "The check, or \"strictness\"")->required();
     w->add_option("--reason", waive.reason, "Why the failure is acceptable")->required();
-    w->add_option("--until", waive.until, "The last day it holds, YYYY-MM-DD (UTC)")->required();
-    w->add_option("--by", waive.by, "Who waives it")->required();
+    flags::add_day(w, "--until", waive.until, "The last day it holds, YYYY-MM-DD (UTC)")
+        ->required();
+    flags::add_name(w, "--by", waive.by, "Who waives it")->required();
     bool status_json = false;
     CLI::App* s = app.add_subcommand("status", "Show the registry");
     s->add_flag("--json", status_json, "As JSON");
@@ -252,13 +339,12 @@ int main(int argc, char** argv) {
     CLI::App* b = app.add_subcommand(
         "bless", "Render the reference cases and store them as the plugin's golden references");
     b->add_option("plugin", bless.plugin, "The plugin's shared library")->required();
-    b->add_option("--by", bless.by, "Who looked at the images and blesses them")->required();
+    flags::add_name(b, "--by", bless.by, "Who looked at the images and blesses them")->required();
     b->add_option("--report", bless_report,
                   "Where the cases run (default ./harness-bless/<plugin>)");
-    b->add_option("--jobs", bless.jobs, "Cases run at once")->check(CLI::Range(1, 256));
-    b->add_option("--timeout", bless.timeout_seconds, "Seconds a case may take")
-        ->check(CLI::Range(1.0, 3600.0))
-        ->default_val(120);
+    flags::add_number(b, "--jobs", bless.jobs, 1, 256, "Cases run at once");
+    flags::add_number(b, "--timeout", bless.timeout_seconds, 1.0, 3600.0,
+                      "Seconds a case may take");
 
     fs::path describe_plugin_file, describe_out;
     CLI::App* d = app.add_subcommand("describe", "(child) Write what a plugin declares as JSON");
@@ -275,13 +361,17 @@ int main(int argc, char** argv) {
     for (CLI::App* sub : {v, r, p, s, w, b, m}) sub->fallthrough();
     try {
         app.parse(argc, argv);
+    } catch (const CLI::ValidationError& e) {
+        // A value a flag refuses: the reader's one line, without CLI11's second; a usage error.
+        std::fprintf(stderr, "acetate-harness: %s\n", e.what());
+        return 2;
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : 2;
     }
     const fs::path registry = registry_path(registry_flag);
     try {
         if (f->parsed()) {
-            auto seconds = parse_duration(fuzz_duration);
+            auto seconds = read_duration(fuzz_duration);
             if (!seconds) return fail(seconds.error().message);
             fuzz.duration_seconds = *seconds;
             std::error_code ec;
@@ -292,6 +382,15 @@ int main(int argc, char** argv) {
                 fuzz_report ? *fuzz_report : fs::path("harness-fuzz") / fuzz.plugin.stem());
             if (fuzz.reproduce) fuzz.reproduce = fs::absolute(*fuzz.reproduce);
             fuzz.self = self_path();
+            {
+                std::vector<RunFile> in{{fuzz.plugin, "the plugin"}},
+                    out{{fuzz.report_directory / "plugin.json", "--report"}};
+                if (fuzz.reproduce) in.push_back({*fuzz.reproduce, "--reproduce"});
+                for (const char* name : {"shrunk-case.json", "report.json", "index.html"})
+                    if (!fuzz.reproduce) out.push_back({fuzz.report_directory / name, "--report"});
+                if (auto spared = check_outputs_spare_inputs(out, in); !spared)
+                    return fail(spared.error().message);
+            }
             return run_fuzz(fuzz);
         }
         if (v->parsed()) {
@@ -321,20 +420,16 @@ int main(int argc, char** argv) {
                         "--list-cases prints them)");
                 validate.out = fs::absolute(*validate.out);
                 if (!report_flag) validate.report_directory = *validate.out;
+                if (auto runner = runner_identity(validate); !runner)
+                    return fail(runner.error().message);
             }
+            std::vector<RunFile> inputs = recording_inputs(validate);
+            inputs.push_back({validate.plugin, "the plugin"});
+            if (auto spared = check_validate_outputs(validate, inputs); !spared)
+                return fail(spared.error().message);
             return run_validate(validate);
         }
         if (m->parsed()) {
-            auto shards = read_shard_results(merge_folders);
-            if (!shards) return fail(shards.error().message);
-            const ShardResult& first = shards->front();
-            validate.plugin = first.plugin.file;
-            validate.strictness = first.strictness;
-            validate.seed = first.seed;
-            validate.up_to = ValidationStage::AlphaTested;
-            for (const ShardResult& r : *shards)
-                if (r.stage == ValidationStage::Integrated)
-                    validate.up_to = ValidationStage::Integrated;
             for (const fs::path& folder : merge_folders)
                 validate.merge_from.push_back(fs::absolute(folder));
             validate.report_directory =
@@ -344,6 +439,26 @@ int main(int argc, char** argv) {
             validate.allowed_signers = allowed_signers_path(allowed_signers_flag);
             validate.references = references_path(references_flag);
             validate.signoffs = default_signoffs_path();
+            // Outputs first, before a result is read: none may be an input of the run.
+            std::vector<RunFile> inputs = recording_inputs(validate);
+            for (const fs::path& folder : merge_folders)
+                add_files_under(inputs, folder / "results", "a shard's result");
+            if (auto spared = check_validate_outputs(validate, inputs); !spared)
+                return fail(spared.error().message);
+            auto shards = read_shard_results(
+                merge_folders, SignatureVerifier(validate.allowed_signers, kCaseResultNamespace));
+            if (!shards) return fail(shards.error().message);
+            const ShardResult& first = shards->front();
+            validate.plugin = first.plugin.file;
+            validate.strictness = first.strictness;
+            validate.seed = first.seed;
+            validate.up_to = ValidationStage::AlphaTested;
+            for (const ShardResult& r : *shards)
+                if (r.stage == ValidationStage::Integrated)
+                    validate.up_to = ValidationStage::Integrated;
+            inputs.push_back({validate.plugin, "the plugin"});
+            if (auto spared = check_validate_outputs(validate, inputs); !spared)
+                return fail(spared.error().message);
             return run_validate(validate);
         }
         if (b->parsed()) {
@@ -355,6 +470,12 @@ int main(int argc, char** argv) {
             bless.report_directory = fs::absolute(
                 bless_report ? *bless_report : fs::path("harness-bless") / bless.plugin.stem());
             bless.self = self_path();
+            if (auto spared = check_outputs_spare_inputs(
+                    {{bless.report_directory / "plugin.json", "--report"},
+                     {bless.report_directory / "references.png", "--report"}},
+                    {{bless.plugin, "the plugin"}});
+                !spared)
+                return fail(spared.error().message);
             return run_bless(bless);
         }
         RegistryCommandContext context{

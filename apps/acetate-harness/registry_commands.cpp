@@ -63,6 +63,23 @@ Result<void> sign(const RegistryCommandContext& c, const PluginInfo& p, Validati
                                       "signs for {} (reviewed like code)",
                                       plugin, what, held.error().message,
                                       c.verifier.allowed_signers().string(), s.by));
+    // The author scopes, as every reader applies them (registry_trust.cpp): an outside author
+    // signs for their own plugins only, and never their promotion.
+    auto scopes = c.verifier.read_author_scopes();
+    if (!scopes)
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: {} refused: {}", plugin, what, scopes.error().message));
+    if (scopes->is_author(s.by) && !scopes->covers(s.by, p.id))
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: {} refused: {} is an outside author who may sign for "
+                                      "{} only ({})",
+                                      plugin, what, s.by, scopes->patterns_of(s.by),
+                                      c.verifier.author_scopes().string()));
+    if (stage == ValidationStage::Validated && scopes->covers(s.by, p.id))
+        return make_error(ErrorCode::InvalidInput,
+                          fmt::format("{}: promotion refused: {} is the plugin's own author; "
+                                      "VALIDATED needs a promotion by an independent maintainer",
+                                      plugin, s.by));
     s.signature = std::move(signature).value();
     return {};
 }
@@ -216,6 +233,7 @@ int run_status(const RegistryCommandContext& c, bool as_json) {
             if (!e) continue;
             entry["stage"] = to_string(e->stage());
             if (!e->distrusted.empty()) entry["distrusted"] = e->distrusted;
+            if (e->review) entry["review_by_author"] = e->review_by_author;
         }
         std::printf("%s\n", j.dump(2).c_str());
         return 0;
@@ -233,7 +251,9 @@ int run_status(const RegistryCommandContext& c, bool as_json) {
         auto add = [&](const std::string& text) {
             records += (records.empty() ? "" : "; ") + text;
         };
-        if (e.review) add(fmt::format("reviewed by {} {}", e.review->by, e.review->at));
+        if (e.review)
+            add(fmt::format("reviewed by {}{} {}", e.review->by,
+                            e.review_by_author ? " (the plugin's own author)" : "", e.review->at));
         if (e.alpha_tested) add(fmt::format("alpha-tested {}", e.alpha_tested->at));
         if (e.integrated) add(fmt::format("integrated {}", e.integrated->at));
         if (e.promotion) add(fmt::format("promoted by {} {}", e.promotion->by, e.promotion->at));

@@ -1,9 +1,10 @@
 // The `acetate` command line. Subcommands and flags are binding: other tools call them.
 
 #include <CLI/CLI.hpp>
-#include <charconv>
 #include <cstdio>
 
+#include "../flag_values.hpp"
+#include "core/number_text.hpp"
 #include "render_command.hpp"
 
 int main(int argc, char** argv) {
@@ -20,7 +21,9 @@ int main(int argc, char** argv) {
                     "Output image: .exr (half, premultiplied, "
                     "linear) or .png (8-bit sRGB, straight alpha)")
         ->required();
-    auto* floor = cmd->add_option("--floor", render.floor, "Active floor (default: the scene's)");
+    // Numbers go through the one reader (apps/flag_values.hpp): finite, in range, no wrap.
+    auto* floor = acetate::flags::add_number(cmd, "--floor", render.floor, 0, UINT32_MAX,
+                                             "Active floor (default: the scene's)");
     cmd->add_option("--floors", floors_list,
                     "Active floors to render in turn in one process, e.g. 0,1,2,1, or \"all\" "
                     "(every floor of each scene, bottom to top); writes OUT with the floor "
@@ -35,8 +38,9 @@ int main(int argc, char** argv) {
     cmd->add_option("--plugin-path", render.plugin_paths,
                     "Directory to search for effect plugins first (repeatable); then "
                     "ACETATE_PLUGIN_PATH, then the installation's lib/acetate/plugins");
-    cmd->add_option("--time", render.time, "Time in seconds that effects animate with")
-        ->default_val(0.0f);
+    acetate::flags::add_number(cmd, "--time", render.time, -acetate::flags::kMaxTimeSeconds,
+                               acetate::flags::kMaxTimeSeconds,
+                               "Time in seconds that effects animate with");
     cmd->add_flag("!--no-pipeline-cache", render.pipeline_cache,
                   "Do not read or write the pipeline cache in the user cache directory");
     cmd->add_option("--registry", render.registry,
@@ -59,16 +63,17 @@ int main(int argc, char** argv) {
             while (start <= floors_list.size()) {
                 const size_t comma = floors_list.find(',', start);
                 const std::string item = floors_list.substr(start, comma - start);
-                uint32_t value = 0;
-                const auto [end, error] =
-                    std::from_chars(item.data(), item.data() + item.size(), value);
-                if (error != std::errc() || end != item.data() + item.size() || item.empty())
-                    throw std::invalid_argument(item);
-                render.floors.push_back(value);
+                auto value = acetate::number_text::read<uint32_t>(item, "--floors");
+                if (!value) throw std::invalid_argument(item);
+                render.floors.push_back(value.value());
                 if (comma == std::string::npos) break;
                 start = comma + 1;
             }
         }
+    } catch (const CLI::ValidationError& e) {
+        // A value a flag refuses: the reader's one line, without CLI11's second.
+        std::fprintf(stderr, "acetate: %s\n", e.what());
+        return 2;
     } catch (const CLI::ParseError& e) {
         // --help exits 0; every usage error exits 2 (docs/conventions.md, exit codes).
         return app.exit(e) == 0 ? 0 : 2;

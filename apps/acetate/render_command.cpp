@@ -3,14 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <limits>
 #include <memory>
 
 #include "acetate/host/host.hpp"
 #include "core/atomic_file.hpp"
-#include "output_paths.hpp"
+#include "core/output_paths.hpp"
 #include "stats_json.hpp"
 
 // A thin program on the embedding API (acetate/host/host.hpp): the flags become HostOptions
@@ -103,13 +101,7 @@ int run_render(const RenderCommand& command) {
     if (ext != ".exr" && ext != ".png")
         return fail(
             fmt::format("-o {}: the output must end in .exr or .png", command.output.string()));
-    // Effects also read the time as a 32-bit float (acetate_time), which must stay finite.
-    if (!std::isfinite(command.time) ||
-        std::abs(command.time) > double(std::numeric_limits<float>::max()))
-        return fail(
-            fmt::format("--time: expected a finite number of seconds within the 32-bit "
-                        "float range, got {}",
-                        command.time));
+    // --time was read finite and within the 32-bit float range (flags::kMaxTimeSeconds).
     host::SceneOptions scene_options;
     auto view = host::parse_view(command.view);
     if (!view) return fail("--view: " + view.error().message);

@@ -13,37 +13,10 @@
 #include <cstring>
 #include <sstream>
 
+#include "plugins/sealed_library.hpp"
+
 namespace acetate {
 namespace {
-
-// A plugin must be a regular file starting with an ELF header, checked before dlopen: the
-// dynamic linker's own message for an image or a text file ("invalid ELF header", wrapped by
-// Boost.DLL in "load() failed (dlerror system message: ...): Bad file descriptor") names the
-// pinned /proc/self/fd path and two causes, one of them wrong.
-Result<void> check_shared_library(const std::filesystem::path& library, const std::string& where) {
-    const int fd = ::open(library.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0 && errno == ENOENT)
-        return make_error(ErrorCode::FileNotFound, fmt::format("{}: file not found", where));
-    if (fd < 0)
-        return make_error(ErrorCode::Io,
-                          fmt::format("{}: cannot open: {}", where, std::strerror(errno)));
-    struct stat st {};
-    char magic[4] = {};
-    const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
-    static constexpr char kElfMagic[4] = {0x7f, 'E', 'L', 'F'};
-    const bool elf = regular && ::pread(fd, magic, 4, 0) == 4 &&
-                     std::memcmp(magic, kElfMagic, sizeof(kElfMagic)) == 0;
-    ::close(fd);
-    if (!regular)
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: not a regular file, so not a plugin", where));
-    if (!elf)
-        return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: not a shared library (it does not start with an ELF "
-                                      "header)",
-                                      where));
-    return {};
-}
 
 // What dlopen said, without Boost.DLL's wrapping and without the library's own path (the
 // caller names the file as the user gave it).
@@ -99,28 +72,28 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::load_file(const std::filesys
 
 Result<std::shared_ptr<LoadedPlugin>> PluginLoader::admit_and_open(
     const std::string& id, const std::filesystem::path& file) {
-    if (!admission_) return open_library(file, file);
-    // Pin the file: the policy reads, and dlopen maps, the same open file, so replacing the
-    // file on disk between the check and the load changes nothing.
-    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-        return make_error(ErrorCode::Io,
-                          fmt::format("{}: cannot open: {}", file.string(), std::strerror(errno)));
-    const std::filesystem::path pinned = fmt::format("/proc/self/fd/{}", fd);
-    auto admitted = admission_(id, file, pinned);
-    auto plugin = admitted ? open_library(pinned, file)
-                           : Result<std::shared_ptr<LoadedPlugin>>(admitted.error());
-    // A loaded library's descriptor stays open for the life of the process: the dynamic
-    // linker knows the library by the name "/proc/self/fd/N", and would hand the same library
-    // back for a later dlopen of that name if the number were reused for another plugin.
-    if (!plugin) ::close(fd);
+    // The policy hashes, and dlopen maps, one sealed copy (sealed_library.hpp): nothing done to
+    // the file on disk after this line can change what runs.
+    auto sealed = seal_library(file, file.string());
+    if (!sealed) return sealed.error();
+    auto admitted = admission_ ? admission_(id, file, sealed->path) : Result<void>();
+    if (!admitted) {
+        ::close(sealed->fd);  // never mapped
+        return admitted.error();
+    }
+    // From here the memory file stays open for the life of the process, whatever happens: the
+    // dynamic linker knows a library by the name "/proc/self/fd/N" (and may keep a refused one
+    // mapped), so it would hand that library back for a later dlopen of the same name if the
+    // number were reused for another plugin.
+    auto plugin = open_library(sealed->path, file);
+    if (!plugin) return plugin;
+    plugin.value()->binary_sha256 = sealed->sha256;
     return plugin;
 }
 
 Result<std::shared_ptr<LoadedPlugin>> PluginLoader::open_library(
     const std::filesystem::path& library, const std::filesystem::path& file) {
     const std::string where = file.string();
-    ACETATE_TRY(check_shared_library(library, where));
     auto plugin = std::make_shared<LoadedPlugin>();
     plugin->file = file;
     try {

@@ -23,6 +23,9 @@ namespace acetate {
 // A loaded plugin: the library stays loaded as long as this lives.
 struct LoadedPlugin {
     std::filesystem::path file;
+    // SHA-256 of the bytes loaded: the sealed copy that was judged and mapped, which may differ
+    // from what `file` holds by the time anyone hashes it again.
+    std::string binary_sha256;
     std::shared_ptr<boost::dll::shared_library> library;
     const AcetateEffectApi* api = nullptr;
     EffectDescriptor descriptor;
@@ -34,10 +37,11 @@ class PluginLoader {
     // found and before it is loaded (dlopen runs the library's static constructors, so a
     // refused file must never reach it). `id` is the id asked for by load(), or empty for
     // load_file(), whose id is not known before loading (a policy then judges the file by its
-    // bytes alone). `contents` names the same file held open (/proc/self/fd/N): that open file
-    // is what gets loaded if admitted, so a policy that reads its bytes from `contents` judges
-    // exactly what runs, even if `file` is replaced meanwhile. An error refuses the file and
-    // is returned by load() / load_file() as is.
+    // bytes alone). `contents` names a sealed memory copy of the file (/proc/self/fd/N,
+    // sealed_library.hpp): that copy is what gets loaded if admitted, so a policy that reads
+    // its bytes from `contents` judges exactly what runs, even if `file` is rewritten in place
+    // or replaced meanwhile. An error refuses the file and is returned by load() / load_file()
+    // as is.
     using Admission =
         std::function<Result<void>(const std::string& id, const std::filesystem::path& file,
                                    const std::filesystem::path& contents)>;

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace acetate {
 namespace {
@@ -16,21 +15,21 @@ std::string known_params(const EffectDescriptor& d) {
     return known.empty() ? "none" : known;
 }
 
-// A JSON number (or boolean) as a float; the error text says what is wrong.
-Result<float> number_of(const nlohmann::json& value, const std::string& field) {
-    if (!value.is_number() && !value.is_boolean())
+// A JSON number as a double; for a scalar parameter also true/false (1/0). A vector or colour
+// component must be a number: docs/scene-format.md says "an array of exactly 2 or 3 numbers".
+// Any finite number is taken, however large: the caller clamps it to the parameter's range, as
+// that document promises ("1e39" for a float parameter becomes its max), so only the shape and
+// finiteness are errors here.
+Result<double> number_of(const nlohmann::json& value, const std::string& field,
+                         bool boolean_allowed) {
+    if (value.is_boolean() && boolean_allowed) return value.get<bool>() ? 1.0 : 0.0;
+    if (!value.is_number())
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("{}: expected a number, got {}", field, value.dump()));
-    // Read as double first: a value beyond the float range (-1e308) is out of range, not
-    // "not finite" as it would look after the conversion.
-    const double wide = value.is_boolean() ? (value.get<bool>() ? 1.0 : 0.0) : value.get<double>();
-    if (!std::isfinite(wide))
+    const double number = value.get<double>();
+    if (!std::isfinite(number))
         return make_error(ErrorCode::InvalidInput, field + ": not a finite number");
-    if (std::abs(wide) > double(std::numeric_limits<float>::max()))
-        return make_error(
-            ErrorCode::InvalidInput,
-            fmt::format("{}: {} is out of range for a 32-bit float", field, value.dump()));
-    return float(wide);
+    return number;
 }
 
 }  // namespace
@@ -42,11 +41,14 @@ Result<ParamVectors> resolve_param_vectors(const EffectDescriptor& d, const Effe
         values.push_back(p.default_vector);
         values.back()[0] = p.default_value;
     }
-    auto set = [&](size_t index, uint32_t component, float value) {
+    // Fitted in double, then stored: a value beyond the float range is clamped, never
+    // turned into an infinity first.
+    auto set = [&](size_t index, uint32_t component, double value) {
         const EffectParam& p = d.params[index];
         if (p.type == ACETATE_PARAM_INT) value = std::round(value);
-        if (p.type == ACETATE_PARAM_BOOL) value = value >= 0.5f ? 1.0f : 0.0f;
-        values[index][component] = std::clamp(value, p.min_value, p.max_value);
+        if (p.type == ACETATE_PARAM_BOOL) value = value >= 0.5 ? 1.0 : 0.0;
+        values[index][component] =
+            float(std::clamp(value, double(p.min_value), double(p.max_value)));
     };
     if (!ref.preset.empty()) {
         const auto preset = d.presets.find(ref.preset);
@@ -77,7 +79,7 @@ Result<ParamVectors> resolve_param_vectors(const EffectDescriptor& d, const Effe
                                           field, d.id));
         const uint32_t components = p.components();
         if (components == 1) {
-            auto number = number_of(value, field);
+            auto number = number_of(value, field, true);
             if (!number) return number.error();
             set(size_t(index), 0, number.value());
             continue;
@@ -87,7 +89,7 @@ Result<ParamVectors> resolve_param_vectors(const EffectDescriptor& d, const Effe
                               fmt::format("{}: expected an array of {} numbers, got {}", field,
                                           components, value.dump()));
         for (uint32_t c = 0; c < components; ++c) {
-            auto number = number_of(value[c], fmt::format("{}[{}]", field, c));
+            auto number = number_of(value[c], fmt::format("{}[{}]", field, c), false);
             if (!number) return number.error();
             set(size_t(index), c, number.value());
         }

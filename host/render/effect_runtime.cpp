@@ -100,7 +100,9 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
         float* clock = u + effect_clock_float(instance.params.size());
         const double whole = std::floor(io.time);
         clock[0] = float(std::fmod(whole, 16777216.0));  // exact in a float up to 2^24 s
-        clock[1] = float(io.time - whole);
+        // Kept below 1 as the phases are: a time just under a whole second (2.99999999) has a
+        // fraction that rounds to 1.0f, which an effect reading it as [0, 1) must never see.
+        clock[1] = std::min(float(io.time - whole), 0x1.fffffep-1f);
         for (size_t i = 0; i < instance.phase_periods.size(); ++i) {
             double turns = io.time / instance.phase_periods[i];
             if (!std::isfinite(turns)) turns = 0;  // a time no frame reaches; never a NaN phase

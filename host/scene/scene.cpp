@@ -7,6 +7,7 @@
 #include <initializer_list>
 #include <limits>
 #include <string_view>
+#include <utility>
 
 #include "core/input_file.hpp"
 #include "core/json_fields.hpp"
@@ -349,12 +350,28 @@ Result<SceneDesc> parse_scene_file(const fs::path& file) {
     return parse_scene_text(text.value(), file);
 }
 
+namespace {
+
+// Cosine and sine of an angle in degrees, exact at multiples of 90: in radians 90 degrees is
+// not representable, and cos(pi / 2) is 6.1e-17, which would hand an effect a sun overhead at
+// (5.3e-17, 3.1e-17, 1) instead of the (0, 0, 1) the scene says.
+std::pair<double, double> cos_sin_degrees(double degrees) {
+    double turn = std::fmod(degrees, 360.0);
+    if (turn < 0) turn += 360.0;
+    if (turn == 0) return {1, 0};
+    if (turn == 90) return {0, 1};
+    if (turn == 180) return {-1, 0};
+    if (turn == 270) return {0, -1};
+    const double radians = turn * 3.14159265358979323846 / 180.0;
+    return {std::cos(radians), std::sin(radians)};
+}
+
+}  // namespace
+
 std::array<float, 3> SunDesc::direction() const {
-    // In double, so that 90 degrees gives exactly (0, 0, 1) after rounding to float.
-    const double pi = 3.14159265358979323846;
-    const double az = double(azimuth) * pi / 180.0, el = double(elevation) * pi / 180.0;
-    return {float(std::cos(el) * std::cos(az)), float(std::cos(el) * std::sin(az)),
-            float(std::sin(el))};
+    const auto [cos_az, sin_az] = cos_sin_degrees(azimuth);
+    const auto [cos_el, sin_el] = cos_sin_degrees(elevation);
+    return {float(cos_el * cos_az), float(cos_el * sin_az), float(sin_el)};
 }
 
 }  // namespace acetate

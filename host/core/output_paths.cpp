@@ -1,4 +1,4 @@
-#include "output_paths.hpp"
+#include "core/output_paths.hpp"
 
 #include <fmt/format.h>
 #include <sys/stat.h>
