@@ -29,7 +29,7 @@ printf 'bench@example.org namespaces="acetate-signoff" %s\n' \
 
 # The registries: entry 0 is the plugin itself (the one a render verifies); the others are
 # versions 0.0.N of made-up plugins, each reviewed, evidenced and promoted, all signed.
-python3 - "$work" "$PLUGIN" $SIZES <<'PY'
+[ -f "$work/registries-$(echo $SIZES | tr ' ' '-')" ] || python3 - "$work" "$PLUGIN" $SIZES <<'PY'
 import concurrent.futures, hashlib, json, os, subprocess, sys
 work, plugin_file, sizes = sys.argv[1], sys.argv[2], [int(s) for s in sys.argv[3:]]
 info = json.load(open(f"{work}/plugin.json"))
@@ -65,6 +65,7 @@ with concurrent.futures.ThreadPoolExecutor(4) as pool:
 for n in sizes:
     with open(f"{work}/registry-{n}.json", "w") as f:
         json.dump({"format": "acetate-registry/1", "plugins": entries[:n]}, f, indent=2)
+open(f"{work}/registries-" + "-".join(map(str, sizes)), "w").close()  # kept with KEEP=DIR
 PY
 
 now() { date +%s.%N; }

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include "core/input_file.hpp"
 #include "registry.hpp"
 #include "registry_location.hpp"
+#include "registry_scan.hpp"
 #include "ssh_signature.hpp"
 
 namespace acetate {
@@ -11,9 +13,16 @@ namespace acetate {
 Result<LoadPolicy> LoadPolicy::open(LoadPolicyOptions options) {
     LoadPolicy policy;
     const std::filesystem::path file = registry_path(options.registry);
-    auto loaded = Registry::load(file);  // a missing file: nothing is validated
-    if (!loaded) return loaded.error();
-    policy.registry_ = std::make_shared<const Registry>(std::move(loaded).value());
+    // A missing file: nothing is validated.
+    auto bytes = read_input_file_if_exists(file, kMaxRegistryFileBytes, "a registry");
+    if (!bytes) return bytes.error();
+    policy.registry_text_ = std::make_shared<const std::string>(bytes->value_or(std::string()));
+    policy.registry_file_ = file.string();
+    // A file that is not a registry at all is refused now, before anything loads, with the
+    // full reader's message; its entries are read as admissions need them.
+    if (bytes->has_value() && !scan_registry(**bytes))
+        if (auto whole = Registry::parse(**bytes, policy.registry_file_); !whole)
+            return whole.error();
     std::error_code ec;
     policy.registry_name_ = fmt::format("registry {}{}", file.string(),
                                         std::filesystem::exists(file, ec) ? "" : " (no such file)");
@@ -26,8 +35,18 @@ Result<void> LoadPolicy::admit(const std::string& id, const std::filesystem::pat
                                const std::filesystem::path& contents) const {
     auto sha = file_sha256(contents);  // the open file that will be loaded, not the path
     if (!sha) return sha.error();
-    // Only this binary's entries are verified: each verification runs ssh-keygen.
-    Registry trusted = *registry_;
+    // Only the entries of this binary and this id are read: what the refusal explains, and
+    // all that can admit it.
+    auto selected = registry_text_->empty()
+                        ? Result<Registry>(Registry())
+                        : Registry::parse_selected(
+                              *registry_text_, registry_file_, [&](std::string_view entry) {
+                                  return entry.find(sha.value()) != std::string_view::npos ||
+                                         (!id.empty() &&
+                                          entry.find("\"" + id + "\"") != std::string_view::npos);
+                              });
+    if (!selected) return selected.error();
+    Registry trusted = std::move(selected).value();
     trusted.verify_sign_offs(SignatureVerifier(allowed_signers_), [&](const RegistryEntry& e) {
         return e.binary_sha256 == sha.value() && (id.empty() || e.id == id);
     });

@@ -45,7 +45,10 @@ class LoadPolicy {
 
   private:
     LoadPolicy() = default;
-    std::shared_ptr<const Registry> registry_;
+    // The registry's text, read once; each admission parses only the entries of the binary and
+    // id it judges (Registry::parse_selected), so start-up does not grow with the registry.
+    std::shared_ptr<const std::string> registry_text_;
+    std::string registry_file_;
     std::string registry_name_;
     std::filesystem::path allowed_signers_;
     LoadPolicyOptions options_;

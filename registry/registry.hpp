@@ -130,6 +130,12 @@ class Registry {
     // Parses `json_text`; errors start with `name` and give the field path, e.g.
     // `registry.json: plugins[2].review.at: "yesterday" is not ISO-8601 UTC`.
     static Result<Registry> parse(std::string_view json_text, std::string_view name);
+    // Only the entries whose text `wanted` selects, each read strictly (registry_scan.hpp):
+    // what a host needs from a registry of thousands. A file that is not well-formed, or not
+    // in this format, is read whole as parse() reads it (and so refused the same way); a
+    // malformed entry the selection skips goes unnoticed here (`status` reads every entry).
+    static Result<Registry> parse_selected(std::string_view json_text, std::string_view name,
+                                           const std::function<bool(std::string_view)>& wanted);
     // Reads `file`. A missing file is an empty registry (nothing validated yet); Io when it
     // exists but cannot be read; InvalidInput when malformed. Needs no lock: writers replace the
     // file atomically, so a reader sees one complete version.

@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <array>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "core/json_fields.hpp"
 #include "core/strict_json.hpp"
 #include "plugins/effect_descriptor.hpp"
 #include "registry.hpp"
 #include "registry_fields.hpp"
+#include "registry_scan.hpp"
 
 namespace acetate {
 namespace {
@@ -204,15 +206,40 @@ Result<Registry> Registry::parse(std::string_view json_text, std::string_view na
         if (const std::string format = text(doc, "", "format"); format != kFormat)
             fail("format", fmt::format("\"{}\" is not \"{}\"", format, kFormat));
         const json& plugins = array(doc["plugins"], "plugins");
+        std::set<std::pair<std::string, std::string>> seen;
         for (size_t i = 0; i < plugins.size(); ++i) {
             const std::string path = fmt::format("plugins[{}]", i);
             RegistryEntry e = read_entry(plugins[i], path);
-            if (registry.find(e.id, e.version))
+            if (!seen.emplace(e.id, e.version).second)
                 fail(path, fmt::format("{} appears twice", plugin_name(e.id, e.version)));
             registry.entries_.push_back(std::move(e));
         }
     });
     if (!read) return read.error();
+    std::sort(registry.entries_.begin(), registry.entries_.end(), entry_less);
+    return registry;
+}
+
+Result<Registry> Registry::parse_selected(std::string_view json_text, std::string_view name,
+                                          const std::function<bool(std::string_view)>& wanted) {
+    const auto scanned = scan_registry(json_text);
+    // Not the shape the registry writes: the full reader refuses it with its usual message.
+    if (!scanned || scanned->format != kFormat) return parse(json_text, name);
+    Registry registry;
+    std::set<std::pair<std::string, std::string>> seen;
+    for (size_t i = 0; i < scanned->entries.size(); ++i) {
+        if (!wanted(scanned->entries[i])) continue;
+        const std::string path = fmt::format("plugins[{}]", i);
+        auto parsed = parse_json_strict(scanned->entries[i], fmt::format("{}: {}", name, path));
+        if (!parsed) return parsed.error();
+        auto read = read_json(name, [&] {
+            RegistryEntry e = read_entry(parsed.value(), path);
+            if (!seen.emplace(e.id, e.version).second)
+                fail(path, fmt::format("{} appears twice", plugin_name(e.id, e.version)));
+            registry.entries_.push_back(std::move(e));
+        });
+        if (!read) return read.error();
+    }
     std::sort(registry.entries_.begin(), registry.entries_.end(), entry_less);
     return registry;
 }
