@@ -9,6 +9,7 @@
 // read from the dynamic linker's own log (LD_DEBUG=files, written to LD_DEBUG_OUTPUT files).
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -210,6 +211,31 @@ TEST_F(HostPolicy, AValidatedBinaryRenders) {
                  "ACETATE_REGISTRY=" + test::shell_quote((dir_ / "broken.json").string()));
     EXPECT_EQ(run.code, 0) << run.describe();
     EXPECT_TRUE(fs::exists(dir_ / "flag.png")) << run.describe();
+}
+
+// Revocations that cannot be read refuse every sign-off, through the program as users run it:
+// a FIFO in revoked_keys' place neither hangs the render nor is ignored (which would switch
+// revocation off); the plugin is refused in one line and never opened.
+TEST_F(HostPolicy, RevocationsThatCannotBeReadRefuseAValidatedBinary) {
+    const fs::path registry = dir_ / "registry.json";
+    write_validated_registry(registry);
+    if (HasFatalFailure()) return;
+    const fs::path keys = dir_ / "keys";
+    fs::create_directories(keys);
+    fs::copy_file(test::test_signer().allowed_signers, keys / "allowed_signers");
+    ASSERT_EQ(::mkfifo((keys / "revoked_keys").c_str(), 0600), 0);
+    const CliRun run =
+        render("scene.json -o out.png --registry " + test::shell_quote(registry.string()) +
+               " --allowed-signers " + test::shell_quote((keys / "allowed_signers").string()));
+    EXPECT_EQ(run.code, 1) << run.describe();
+    const auto lines = test::nonempty_lines(run.err);
+    ASSERT_EQ(lines.size(), 1u) << run.describe();
+    EXPECT_TRUE(
+        contains(lines[0], "its signature cannot be checked: " + (keys / "revoked_keys").string() +
+                               ": not a regular file (a FIFO)"))
+        << lines[0];
+    EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+    EXPECT_FALSE(opened_the_copy(run, plugin_file())) << run.ld_log;
 }
 
 // Writing the registry is not enough: the same entry with its promotion's signature removed
