@@ -192,6 +192,15 @@ ordered_json write_waiver(const Waiver& w) {
                         {"until", w.until}, {"source_digest", w.source_digest}};
 }
 
+// Adds the entry read at `path`; a second entry of one plugin version is refused.
+void add_once(std::vector<RegistryEntry>& entries,
+              std::set<std::pair<std::string, std::string>>& seen, RegistryEntry e,
+              const std::string& path) {
+    if (!seen.emplace(e.id, e.version).second)
+        fail(path, fmt::format("{} appears twice", plugin_name(e.id, e.version)));
+    entries.push_back(std::move(e));
+}
+
 }  // namespace
 
 Result<Registry> Registry::parse(std::string_view json_text, std::string_view name) {
@@ -209,10 +218,7 @@ Result<Registry> Registry::parse(std::string_view json_text, std::string_view na
         std::set<std::pair<std::string, std::string>> seen;
         for (size_t i = 0; i < plugins.size(); ++i) {
             const std::string path = fmt::format("plugins[{}]", i);
-            RegistryEntry e = read_entry(plugins[i], path);
-            if (!seen.emplace(e.id, e.version).second)
-                fail(path, fmt::format("{} appears twice", plugin_name(e.id, e.version)));
-            registry.entries_.push_back(std::move(e));
+            add_once(registry.entries_, seen, read_entry(plugins[i], path), path);
         }
     });
     if (!read) return read.error();
@@ -233,10 +239,7 @@ Result<Registry> Registry::parse_selected(std::string_view json_text, std::strin
         auto parsed = parse_json_strict(scanned->entries[i], fmt::format("{}: {}", name, path));
         if (!parsed) return parsed.error();
         auto read = read_json(name, [&] {
-            RegistryEntry e = read_entry(parsed.value(), path);
-            if (!seen.emplace(e.id, e.version).second)
-                fail(path, fmt::format("{} appears twice", plugin_name(e.id, e.version)));
-            registry.entries_.push_back(std::move(e));
+            add_once(registry.entries_, seen, read_entry(parsed.value(), path), path);
         });
         if (!read) return read.error();
     }
