@@ -1,9 +1,9 @@
 // The installed programs' flags and outputs, end to end, as outside testers found them
-// (issue 28): every number, day and name a flag takes goes through the one reader
-// (host/core/number_text.hpp), and no output replaces an input (host/core/output_paths.hpp).
-// Each refusal is exactly one line on stderr, a non-zero exit, and the input's bytes unchanged.
-// Every refusal here comes before any device is opened: no GPU is used (a regression that let
-// one through would reach lavapipe, with the test environment's caches).
+// (the trust path: docs/conventions.md): every number, day and name a flag takes goes through the
+// one reader (host/core/number_text.hpp), and no output replaces an input
+// (host/core/output_paths.hpp). Each refusal is exactly one line on stderr, a non-zero exit, and
+// the input's bytes unchanged. Every refusal here comes before any device is opened: no GPU is used
+// (a regression that let one through would reach lavapipe, with the test environment's caches).
 
 #include <gtest/gtest.h>
 #include <unistd.h>

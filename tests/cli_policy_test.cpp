@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <sstream>
@@ -452,11 +453,12 @@ TEST_F(HostPolicy, TheLoaderAsksBeforeOpening) {
     EXPECT_EQ(loader.loaded_count(), 1u);
 }
 
-// The policy judges the bytes that get loaded: a file replaced on disk after the check (here
-// by junk, from inside the hook) is not what loads; the checked, held-open file is.
-TEST_F(HostPolicy, TheFileLoadedIsTheFileChecked) {
-    PluginLoader loader({plugins_});
-    const auto expected = file_sha256(plugin_file());
+// The policy judges the bytes that get loaded: whatever `change` does to the plugin file from
+// inside the hook, after the check, the checked bytes are what loads, named as the user knows
+// the file, with the digest the policy saw. Returns the file's bytes after the change.
+void expect_the_checked_bytes_load(PluginLoader& loader, const fs::path& plugin,
+                                   const std::function<void(const fs::path&)>& change) {
+    const auto expected = file_sha256(plugin);
     ASSERT_TRUE(expected);
     std::string checked;
     loader.set_admission(
@@ -464,41 +466,35 @@ TEST_F(HostPolicy, TheFileLoadedIsTheFileChecked) {
             auto sha = file_sha256(contents);
             if (!sha) return sha.error();
             checked = sha.value();
-            test::write_text(dir_ / "swap.tmp", "not an ELF file");
-            fs::rename(dir_ / "swap.tmp", file);
-            return {};
-        });
-    auto loaded = loader.load("acetate.lighting");
-    ASSERT_TRUE(loaded) << loaded.error().message;
-    EXPECT_EQ(checked, expected.value());
-    EXPECT_EQ(loaded.value()->file, plugin_file());  // named as the user knows it
-    EXPECT_EQ(loaded.value()->descriptor.id, "acetate.lighting");
-    EXPECT_EQ(test::read_file(plugin_file()), "not an ELF file");  // the swap did happen
-}
-
-// The same, for a file rewritten in place (same inode) after the check: held open, the file
-// would be mapped with the new bytes; the sealed copy the policy judged is what loads, and
-// its digest is the one the loader reports.
-TEST_F(HostPolicy, AFileRewrittenInPlaceAfterTheCheckIsNotWhatLoads) {
-    PluginLoader loader({plugins_});
-    const auto expected = file_sha256(plugin_file());
-    ASSERT_TRUE(expected);
-    std::string checked;
-    loader.set_admission(
-        [&](const std::string&, const fs::path& file, const fs::path& contents) -> Result<void> {
-            auto sha = file_sha256(contents);
-            if (!sha) return sha.error();
-            checked = sha.value();
-            std::ofstream rewrite(file, std::ios::binary | std::ios::trunc);  // same inode
-            rewrite << "not an ELF file";
+            change(file);
             return {};
         });
     auto loaded = loader.load("acetate.lighting");
     ASSERT_TRUE(loaded) << loaded.error().message;
     EXPECT_EQ(checked, expected.value());
     EXPECT_EQ(loaded.value()->binary_sha256, expected.value());
+    EXPECT_EQ(loaded.value()->file, plugin);
     EXPECT_EQ(loaded.value()->descriptor.id, "acetate.lighting");
-    EXPECT_EQ(test::read_file(plugin_file()), "not an ELF file");  // rewritten in place
+    EXPECT_EQ(test::read_file(plugin), "not an ELF file");  // the change did happen
+}
+
+// A file replaced on disk (a new inode) after the check.
+TEST_F(HostPolicy, TheFileLoadedIsTheFileChecked) {
+    PluginLoader loader({plugins_});
+    expect_the_checked_bytes_load(loader, plugin_file(), [&](const fs::path& file) {
+        test::write_text(dir_ / "swap.tmp", "not an ELF file");
+        fs::rename(dir_ / "swap.tmp", file);
+    });
+}
+
+// A file rewritten in place (the same inode) after the check: held open, it would be mapped
+// with the new bytes; the sealed copy the policy judged is what loads.
+TEST_F(HostPolicy, AFileRewrittenInPlaceAfterTheCheckIsNotWhatLoads) {
+    PluginLoader loader({plugins_});
+    expect_the_checked_bytes_load(loader, plugin_file(), [](const fs::path& file) {
+        std::ofstream rewrite(file, std::ios::binary | std::ios::trunc);
+        rewrite << "not an ELF file";
+    });
 }
 
 // Two plugins under a policy in one process: each is the library it names (the dynamic

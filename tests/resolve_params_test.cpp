@@ -33,8 +33,8 @@ TEST(ResolveParams, ValuesAreClampedAndIntsRounded) {
 }
 
 // Any finite number is clamped to the parameter's range, as docs/scene-format.md says, even
-// one beyond the 32-bit float range (1e39 was refused as "out of range" before issue 28): it is
-// fitted in double, never turned into an infinity first.
+// one beyond the 32-bit float range (1e39 was refused as "out of range" before the one reader of
+// numbers): it is fitted in double, never turned into an infinity first.
 TEST(ResolveParams, AFiniteNumberBeyondTheFloatRangeIsClampedAsDocumented) {
     for (auto [huge, radius, taps] : {std::tuple{1e39, 10.0f, 8.0f}, std::tuple{1e308, 10.0f, 8.0f},
                                       std::tuple{-1e308, 0.0f, 1.0f}}) {
