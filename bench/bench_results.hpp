@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/image_compare.hpp"
+#include "image_compare.hpp"
 
 namespace acetate::bench {
 

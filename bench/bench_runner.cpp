@@ -10,9 +10,9 @@
 
 #include "bench_outputs.hpp"
 #include "config_measure.hpp"
+#include "image_compare.hpp"
 #include "peer_flatten.hpp"
 #include "render/renderer.hpp"
-#include "scene/image_compare.hpp"
 #include "scene_variants.hpp"
 #include "vulkan/vulkan_context.hpp"
 

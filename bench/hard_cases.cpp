@@ -11,7 +11,7 @@
 #include <map>
 
 #include "config_measure.hpp"
-#include "scene/image_compare.hpp"
+#include "image_compare.hpp"
 
 namespace acetate::bench {
 namespace {

@@ -11,7 +11,7 @@
 #include <cstdio>
 
 #include "core/elapsed.hpp"
-#include "scene/image_compare.hpp"
+#include "image_compare.hpp"
 
 namespace acetate::bench {
 namespace {

@@ -11,9 +11,9 @@
 #include <utility>
 
 #include "core/atomic_file.hpp"
+#include "image_compare.hpp"
 #include "report.hpp"
 #include "report_text.hpp"
-#include "scene/image_compare.hpp"
 
 namespace acetate::bench {
 namespace fs = std::filesystem;

@@ -6,7 +6,7 @@
 #include <cctype>
 #include <cmath>
 
-#include "scene/image_compare.hpp"
+#include "image_compare.hpp"
 
 namespace acetate::bench::report_detail {
 

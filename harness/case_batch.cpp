@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "case_runner.hpp"
 #include "core/atomic_file.hpp"
 #include "core/child_process.hpp"
+#include "core/fork_server.hpp"
 #include "core/input_file.hpp"
 #include "core/strict_json.hpp"
 #include "validate.hpp"
@@ -43,6 +45,11 @@ std::string shell_word(const std::string& text) {
     return out + "'";
 }
 
+bool fork_server_wanted() {
+    const char* value = std::getenv("ACETATE_FORK_SERVER");
+    return !(value && std::strcmp(value, "0") == 0);
+}
+
 std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpec>& cases) {
     std::vector<std::string> folders;
     for (const CaseSpec& spec : cases) folders.push_back(case_folder(spec.id));
@@ -74,58 +81,70 @@ std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpe
         directories.push_back(dir);
     }
     std::vector<CaseResult> results(cases.size());
-    run_children(jobs, o.jobs, [&](size_t i, const ChildOutcome& outcome) {
-        CaseResult result;
-        const std::string log = tail_of_file(jobs[i].log, 4000);
-        // The child writes result.json last, just before it returns 0: a status 0 without it
-        // is the plugin's exit(0), handled with the other exits below.
-        std::error_code ec;
-        const bool wrote_result = fs::exists(case_result_file(directories[i]), ec);
-        if (outcome.started && !outcome.timed_out && outcome.exit_code == 0 && wrote_result) {
-            auto parsed = read_json(case_result_file(directories[i]));
-            auto read = parsed ? case_result_from_json(*parsed, "result.json")
-                               : Result<CaseResult>(parsed.error());
-            if (read)
-                result = std::move(read.value());
-            else {
+    // Each case's child forked from one server instead of started anew (core/fork_server.hpp):
+    // the same fresh process for a fraction of the start-up. ACETATE_FORK_SERVER=0 spawns each
+    // child instead (to compare, or to rule the server out).
+    std::unique_ptr<ForkServer> server;
+    if (o.fork_server && cases.size() > 1) {
+        std::string error;
+        server = ForkServer::start({o.self.string(), kForkServerCommand}, error);
+    }
+    run_children(
+        jobs, o.jobs,
+        [&](size_t i, const ChildOutcome& outcome) {
+            CaseResult result;
+            const std::string log = tail_of_file(jobs[i].log, 4000);
+            // The child writes result.json last, just before it returns 0: a status 0 without it
+            // is the plugin's exit(0), handled with the other exits below.
+            std::error_code ec;
+            const bool wrote_result = fs::exists(case_result_file(directories[i]), ec);
+            if (outcome.started && !outcome.timed_out && outcome.exit_code == 0 && wrote_result) {
+                auto parsed = read_json(case_result_file(directories[i]));
+                auto read = parsed ? case_result_from_json(*parsed, "result.json")
+                                   : Result<CaseResult>(parsed.error());
+                if (read)
+                    result = std::move(read.value());
+                else {
+                    result.verdict = Verdict::Crash;
+                    result.message = "the child wrote no readable result: " + read.error().message;
+                }
+            } else if (outcome.timed_out) {
+                result.verdict = Verdict::Timeout;
+                result.message = outcome.message;
+            } else if (outcome.signal ||
+                       (outcome.started && outcome.exit_code != kChildSetupFailure)) {
+                // Killed by a signal, or exited on its own with a status the harness never uses
+                // (the plugin called exit()): either way the plugin took the process down. The
+                // log's last lines usually say why (an assertion, the plugin's own error message).
                 result.verdict = Verdict::Crash;
-                result.message = "the child wrote no readable result: " + read.error().message;
+                result.message = with_log(plugin_ended(outcome, "during the case"), log);
+            } else {
+                // The child ran but could not run the case (no device, an unwritable folder): the
+                // case failed, and its last log line says why.
+                result.verdict = Verdict::Fail;
+                result.message = fmt::format("{}: {}", outcome.message, last_line(log));
+                CheckResult run_check;
+                run_check.check = "run";
+                run_check.verdict = Verdict::Fail;
+                run_check.message = "the case could not run: " + result.message;
+                result.checks.push_back(run_check);
             }
-        } else if (outcome.timed_out) {
-            result.verdict = Verdict::Timeout;
-            result.message = outcome.message;
-        } else if (outcome.signal || (outcome.started && outcome.exit_code != kChildSetupFailure)) {
-            // Killed by a signal, or exited on its own with a status the harness never uses
-            // (the plugin called exit()): either way the plugin took the process down. The log's
-            // last lines usually say why (an assertion, the plugin's own error message).
-            result.verdict = Verdict::Crash;
-            result.message = with_log(plugin_ended(outcome, "during the case"), log);
-        } else {
-            // The child ran but could not run the case (no device, an unwritable folder): the
-            // case failed, and its last log line says why.
-            result.verdict = Verdict::Fail;
-            result.message = fmt::format("{}: {}", outcome.message, last_line(log));
-            CheckResult run_check;
-            run_check.check = "run";
-            run_check.verdict = Verdict::Fail;
-            run_check.message = "the case could not run: " + result.message;
-            result.checks.push_back(run_check);
-        }
-        result.id = cases[i].id;
-        result.description = cases[i].description;
-        result.seed = cases[i].seed;
-        result.inputs = cases[i].inputs;
-        result.seconds = outcome.seconds;
-        result.reproduce = o.reproduce ? o.reproduce(cases[i]) : std::string();
-        result.log = log;
-        ++run.done;
-        if (!o.quiet)
-            std::printf("[%zu/%zu] %-28s %-7s %5.1f s%s%s\n", run.done, run.total,
-                        result.id.c_str(), to_string(result.verdict), result.seconds,
-                        result.message.empty() ? "" : "  ", result.message.c_str());
-        std::fflush(stdout);
-        results[i] = std::move(result);
-    });
+            result.id = cases[i].id;
+            result.description = cases[i].description;
+            result.seed = cases[i].seed;
+            result.inputs = cases[i].inputs;
+            result.seconds = outcome.seconds;
+            result.reproduce = o.reproduce ? o.reproduce(cases[i]) : std::string();
+            result.log = log;
+            ++run.done;
+            if (!o.quiet)
+                std::printf("[%zu/%zu] %-28s %-7s %5.1f s%s%s\n", run.done, run.total,
+                            result.id.c_str(), to_string(result.verdict), result.seconds,
+                            result.message.empty() ? "" : "  ", result.message.c_str());
+            std::fflush(stdout);
+            results[i] = std::move(result);
+        },
+        server.get());
     return results;
 }
 

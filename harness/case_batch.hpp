@@ -14,6 +14,11 @@
 
 namespace acetate::harness {
 
+// The subcommand that makes acetate-harness a fork server (its main() calls serve_forks).
+inline constexpr const char* kForkServerCommand = "fork-server";
+// Whether children are forked from a server: yes, unless ACETATE_FORK_SERVER is "0".
+bool fork_server_wanted();
+
 struct CaseBatch {
     std::filesystem::path self;              // acetate-harness, started as `run-case`
     std::filesystem::path plugin_info_file;  // what `describe` wrote
@@ -22,7 +27,10 @@ struct CaseBatch {
     double timeout_seconds = 120;
     // The command line that re-runs one case (CaseResult::reproduce); none when unset.
     std::function<std::string(const CaseSpec&)> reproduce;
-    bool quiet = false;          // no progress line per case
+    bool quiet = false;  // no progress line per case
+    // Fork each case's child from a server started once (core/fork_server.hpp); false when the
+    // environment says ACETATE_FORK_SERVER=0.
+    bool fork_server = fork_server_wanted();
     size_t done = 0, total = 0;  // progress: "[done/total]"
 };
 

@@ -9,7 +9,7 @@ namespace {
 
 constexpr double kHalfMax = 65504.0;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// As tests/composite_accuracy_test.cpp: one ULP of a half is 2^-10 of it, or 2^-24 below the
+// As tests/gpu/composite_accuracy_test.cpp: one ULP of a half is 2^-10 of it, or 2^-24 below the
 // smallest normal.
 constexpr double kHalfRelative = 0x1p-10, kHalfAbsolute = 0x1p-24;
 

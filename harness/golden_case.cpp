@@ -6,8 +6,8 @@
 #include <optional>
 
 #include "case_kinds.hpp"
+#include "image_compare.hpp"
 #include "references.hpp"
-#include "scene/image_compare.hpp"
 #include "scene/scene.hpp"
 
 namespace acetate::harness {

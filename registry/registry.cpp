@@ -19,9 +19,9 @@
 
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
+#include "core/plugin_id.hpp"
 #include "core/sha256.hpp"
 #include "core/strict_json.hpp"
-#include "plugins/effect_descriptor.hpp"
 #include "registry_fields.hpp"
 
 namespace acetate {

@@ -10,8 +10,8 @@
 #include <set>
 
 #include "core/json_fields.hpp"
+#include "core/plugin_id.hpp"
 #include "core/strict_json.hpp"
-#include "plugins/effect_descriptor.hpp"
 #include "registry.hpp"
 #include "registry_fields.hpp"
 #include "registry_scan.hpp"

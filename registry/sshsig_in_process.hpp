@@ -7,7 +7,7 @@
 // It only ever says yes when `ssh-keygen -Y verify` would: any file it does not fully
 // understand (a principal or namespace pattern, a `cert-authority` or `valid-*` option, quoted
 // principals, a binary KRL for revocations) and any signature it does not accept is left to
-// ssh-keygen, which also gives the reasons for a refusal. tests/sshsig_in_process_test.cpp
+// ssh-keygen, which also gives the reasons for a refusal. tests/unit/sshsig_in_process_test.cpp
 // holds the two paths side by side.
 
 #include <string_view>

@@ -4,7 +4,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${ACETATE_BUILD_DIR:-$root/build}
-bash "$root/scripts/setup.sh"
+# Warnings are errors here (and in CI, which runs this): none of the project's own lands.
+ACETATE_CMAKE_ARGS="-DACETATE_WERROR=ON ${ACETATE_CMAKE_ARGS:-}" bash "$root/scripts/setup.sh"
 echo "== Running the tests"
 cd "$build"
 ctest --output-on-failure -j"$(nproc)" "$@"

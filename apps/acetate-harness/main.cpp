@@ -19,8 +19,10 @@
 
 #include "../flag_values.hpp"
 #include "bless_command.hpp"
+#include "case_batch.hpp"
 #include "case_runner.hpp"
 #include "core/atomic_file.hpp"
+#include "core/fork_server.hpp"
 #include "core/input_file.hpp"
 #include "core/json_fields.hpp"
 #include "core/number_text.hpp"
@@ -200,9 +202,8 @@ Result<void> runner_identity(ValidateOptions& o) {
     return {};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// The program as its command line says; main() also makes it a fork server.
+int run_harness(int argc, char** argv) {
     // Children are reaped with waitpid: a SIGCHLD ignored by whoever started us must not be
     // inherited (the kernel would then reap them itself and every case would look hung).
     signal(SIGCHLD, SIG_DFL);
@@ -500,4 +501,14 @@ int main(int argc, char** argv) {
         return fail(e.what());
     }
     return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    // Started by a run as its fork server (core/fork_server.hpp): each case's child is forked
+    // from this untouched process and runs as `acetate-harness run-case ...` would.
+    if (argc == 2 && std::strcmp(argv[1], harness::kForkServerCommand) == 0)
+        return serve_forks(run_harness);
+    return run_harness(argc, argv);
 }

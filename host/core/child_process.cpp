@@ -12,6 +12,8 @@
 #include <sstream>
 #include <thread>
 
+#include "core/fork_server.hpp"
+
 extern char** environ;
 
 namespace acetate {
@@ -45,6 +47,20 @@ ChildOutcome spawn(const ChildJob& job, pid_t& pid) {
     return outcome;
 }
 
+// From the fork server when there is one and it can; spawned otherwise.
+ChildOutcome launch(const ChildJob& job, ForkServer* server, pid_t& pid) {
+    if (server) {
+        std::string error;
+        pid = server->launch(job.argv, job.log.string(), error);
+        if (pid > 0) {
+            ChildOutcome outcome;
+            outcome.started = true;
+            return outcome;
+        }
+    }
+    return spawn(job, pid);
+}
+
 ChildOutcome finished(int status, double seconds) {
     ChildOutcome outcome;
     outcome.started = true;
@@ -64,14 +80,15 @@ ChildOutcome finished(int status, double seconds) {
 }  // namespace
 
 void run_children(const std::vector<ChildJob>& jobs, unsigned parallel,
-                  const std::function<void(size_t, const ChildOutcome&)>& done) {
+                  const std::function<void(size_t, const ChildOutcome&)>& done,
+                  ForkServer* server) {
     parallel = std::max(1u, parallel);
     std::vector<Running> running;
     size_t next = 0;
     while (next < jobs.size() || !running.empty()) {
         while (next < jobs.size() && running.size() < parallel) {
             pid_t pid = 0;
-            ChildOutcome outcome = spawn(jobs[next], pid);
+            ChildOutcome outcome = launch(jobs[next], server, pid);
             if (!outcome.started)
                 done(next, outcome);
             else

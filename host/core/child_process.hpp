@@ -26,10 +26,15 @@ struct ChildOutcome {
     std::string message;  // "exit 1", "killed by SIGSEGV", "no result after 60 s", ...
 };
 
+class ForkServer;
+
 // Runs `jobs`, at most `parallel` at a time, calling `done(index, outcome)` as each finishes
-// (on this thread, in completion order).
+// (on this thread, in completion order). With a `server` (fork_server.hpp: every job's argv[0]
+// must be the server's own program), each child is forked from it instead of spawned; where
+// the server cannot, the job is spawned as without one.
 void run_children(const std::vector<ChildJob>& jobs, unsigned parallel,
-                  const std::function<void(size_t, const ChildOutcome&)>& done);
+                  const std::function<void(size_t, const ChildOutcome&)>& done,
+                  ForkServer* server = nullptr);
 
 // The last `max_bytes` of a text file (a child's log), "" if unreadable.
 std::string tail_of_file(const std::filesystem::path& file, size_t max_bytes);

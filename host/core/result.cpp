@@ -1,7 +1,5 @@
 #include "core/result.hpp"
 
-#include <fmt/format.h>
-
 namespace acetate {
 
 const char* to_string(ErrorCode code) {
@@ -30,14 +28,6 @@ const char* to_string(ErrorCode code) {
             return "vulkan call";
     }
     return "unknown";
-}
-
-Error vk_error(const char* call, VkResult result) {
-    const ErrorCode code =
-        (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
-            ? ErrorCode::OutOfMemory
-            : ErrorCode::VulkanCall;
-    return make_error(code, fmt::format("{} failed with VkResult {}", call, int(result)), result);
 }
 
 }  // namespace acetate

@@ -3,9 +3,8 @@
 // input (tier 3 of docs/design.md, "Errors: three tiers"). Internal invariants use assert;
 // contract violations use ACETATE_CHECK (core/check.hpp).
 
-#include <vulkan/vulkan.h>
-
 #include <cassert>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <variant>
@@ -28,15 +27,16 @@ enum class ErrorCode {
 
 const char* to_string(ErrorCode code);
 
-// One failure: what kind, the VkResult when Vulkan was involved, and a one-line message that
-// names the file, field or object at fault.
+// One failure: what kind, the VkResult when Vulkan was involved (its value, 0 for none: core
+// includes no Vulkan header, so the registry and the tools that never render do not link
+// Vulkan), and a one-line message that names the file, field or object at fault.
 struct Error {
     ErrorCode code = ErrorCode::InvalidInput;
     std::string message;
-    VkResult vk_result = VK_SUCCESS;
+    int32_t vk_result = 0;
 };
 
-inline Error make_error(ErrorCode code, std::string message, VkResult vk = VK_SUCCESS) {
+inline Error make_error(ErrorCode code, std::string message, int32_t vk = 0) {
     return Error{code, std::move(message), vk};
 }
 
@@ -97,15 +97,3 @@ class [[nodiscard]] Result<void> {
         auto acetate_try_result_ = (expr);                                 \
         if (!acetate_try_result_.ok()) return acetate_try_result_.error(); \
     } while (0)
-
-// Checks a VkResult; on failure returns an Error naming the call.
-#define ACETATE_VK(call)                                           \
-    do {                                                           \
-        VkResult acetate_vk_result_ = (call);                      \
-        if (acetate_vk_result_ != VK_SUCCESS)                      \
-            return ::acetate::vk_error(#call, acetate_vk_result_); \
-    } while (0)
-
-namespace acetate {
-Error vk_error(const char* call, VkResult result);
-}

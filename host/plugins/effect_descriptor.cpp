@@ -34,11 +34,6 @@ std::string EffectDescriptor::version_string() const {
     return fmt::format("{}.{}.{}", version[0], version[1], version[2]);
 }
 
-bool is_reverse_dns(const std::string& id) {
-    static const std::regex pattern("[a-z][a-z0-9_-]*(\\.[a-z][a-z0-9_-]*)+");
-    return std::regex_match(id, pattern);
-}
-
 namespace {
 
 Error bad(const std::string& where, const std::string& what) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/plugin_id.hpp"
 #include "core/result.hpp"
 
 namespace acetate {
@@ -52,7 +53,5 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* descript
 
 // [a-z][a-z0-9_]* -- the names of parameters, targets, passes and mask kinds.
 bool is_simple_name(const std::string& name);
-// Reverse-DNS: at least two dot-separated [a-z][a-z0-9_-]* labels.
-bool is_reverse_dns(const std::string& id);
 
 }  // namespace acetate

@@ -1,6 +1,6 @@
 #pragma once
 // An effect's parameter values for one instance: defaults, then the preset, then the scene's
-// params, each clamped to its range. CPU only (tests/resolve_params_test.cpp runs it without a
+// params, each clamped to its range. CPU only (tests/unit/resolve_params_test.cpp runs it without a
 // device).
 
 #include <array>

@@ -8,6 +8,7 @@
 #include "core/sha256.hpp"
 #include "render/pipeline_pool.hpp"
 #include "vulkan/graphics_pipeline.hpp"
+#include "vulkan/vk_check.hpp"
 #include "vulkan/vulkan_context.hpp"
 
 namespace acetate {

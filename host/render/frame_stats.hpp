@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/pixel_rect.hpp"
+#include "vulkan/pass_timing.hpp"
 
 namespace acetate {
 
@@ -19,12 +20,6 @@ struct FloorFrameReport {
     uint32_t passes = 0;
     uint64_t pixels_shaded = 0;  // sum over this floor's passes of the area they shade
     uint64_t violations = 0;     // see FrameStats::violations
-};
-
-// GPU time of one recorded step of a frame (CompositorOptions::gpu_timings).
-struct PassTiming {
-    std::string name;  // "floor 0 tiles", a pass's label ("floor0.acetate.water.shade"), "output"
-    double milliseconds = 0;
 };
 
 struct FrameStats {

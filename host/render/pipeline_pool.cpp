@@ -1,6 +1,7 @@
 #include "render/pipeline_pool.hpp"
 
 #include "core/sha256.hpp"
+#include "vulkan/vk_check.hpp"
 #include "vulkan/vulkan_context.hpp"
 
 namespace acetate {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "vulkan/vk_check.hpp"
 #include "vulkan/vulkan_context.hpp"
 
 namespace acetate {
@@ -73,10 +74,10 @@ Result<GpuImage> GpuImage::create(VulkanContext& context, std::string name, uint
     out.width_ = width;
     out.height_ = height;
     out.format_ = format;
-    out.aspect_ = format == VK_FORMAT_S8_UINT ? VK_IMAGE_ASPECT_STENCIL_BIT
+    out.aspect_ = format == VK_FORMAT_S8_UINT ? VkImageAspectFlags(VK_IMAGE_ASPECT_STENCIL_BIT)
                   : is_stencil_format(format)
                       ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT)
-                      : VK_IMAGE_ASPECT_COLOR_BIT;
+                      : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT);
     VkDevice device = context.device();
 
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};

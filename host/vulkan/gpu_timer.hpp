@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/result.hpp"
-#include "render/frame_stats.hpp"
+#include "vulkan/pass_timing.hpp"
 
 namespace acetate {
 

@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "vulkan/vk_check.hpp"
+
 namespace acetate {
 namespace {
 

@@ -1,5 +1,5 @@
 // An effect that uses every feature of ABI 1.0, for the compatibility test
-// (tests/abi_compat_test.cpp). It is built twice from this one source: against the committed
+// (tests/gpu/abi_compat_test.cpp). It is built twice from this one source: against the committed
 // copy of the 1.0 headers (tests/abi_1_0/include) and against the current SDK. Both builds must
 // load in today's host and render bit-identically to the images the 1.0 host rendered
 // (tests/abi_1_0/golden/). Do not change this file: the golden images were made from it.

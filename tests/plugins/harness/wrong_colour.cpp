@@ -2,7 +2,7 @@
 // way (towards blue, away from red): alpha is kept, rgb is a non-negative scale of the input
 // (0 wherever a is 0), deterministic, both parameters connected. Every contract check passes;
 // only the comparison with references blessed from the correct tint (`golden`) can catch it
-// (tests/harness_golden_test.cpp).
+// (tests/harness/harness_golden_test.cpp).
 #include <acetate/effect.hpp>
 
 class WrongColour final : public acetate::sdk::Effect {

@@ -1,4 +1,4 @@
-// Reports what ABI 1.1 gives a plugin, for tests/sdk11_features_test.cpp: each pixel of row 0
+// Reports what ABI 1.1 gives a plugin, for tests/gpu/sdk11_features_test.cpp: each pixel of row 0
 // holds some values the host passed (params, phases, clock, lights, mask sums computed at
 // build, floor facts, an RG32F target read through a renamed input); every other pixel is the
 // floor unchanged. Run it with RGBA32F floors so the values come back exactly.

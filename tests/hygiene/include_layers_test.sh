@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# include_layers_test.sh SOURCE_DIR -- every #include goes down the layers, never up or sideways.
+#
+# The layers, lowest first (docs/OVERVIEW.md, "Layers"): the SDK; host/core (small things
+# everything uses, no Vulkan); the registry (built on core only); the rest of the host library
+# (vulkan, scene, plugins, render, api); the tools' libraries (compare, harness, bench); the
+# programs in apps/. Plugins and examples see only the SDK (an embedding example, the installed
+# host API too). Each include is resolved as the compiler would (the including file's folder,
+# then the include roots) and the folder it lands in must be one the including folder may use.
+# A failure names the file, the include and the rule; the exit status is the number of them.
+set -u
+cd "${1:?usage: include_layers_test.sh SOURCE_DIR}" || exit 2
+
+# The layer of a file, by its folder.
+layer_of() {
+  case "$1" in
+    sdk/*) echo sdk ;;
+    host/core/*) echo core ;;
+    registry/*) echo registry ;;
+    host/vulkan/*) echo vulkan ;;
+    host/scene/*) echo scene ;;
+    host/plugins/*) echo loader ;;
+    host/render/*) echo render ;;
+    host/include/*) echo host-api ;;
+    host/api/*) echo api ;;
+    compare/*) echo compare ;;
+    harness/*) echo harness ;;
+    bench/*) echo bench ;;
+    apps/*) echo apps ;;
+    examples/embedding-host/*) echo embedder ;;
+    plugins/* | examples/*) echo plugin ;;
+    *) echo unchecked ;;  # tests, fuzz, benchmarks: at the top, may use anything
+  esac
+}
+
+# What each layer may include besides itself.
+declare -A may_use=(
+  [sdk]=""
+  [core]=""
+  [registry]="core"
+  [vulkan]="core"
+  [scene]="core vulkan"
+  [loader]="core sdk scene vulkan"
+  [render]="core sdk vulkan scene loader"
+  [host-api]=""
+  [api]="core sdk registry vulkan scene loader render host-api"
+  [compare]="core scene"
+  [harness]="core sdk registry vulkan scene loader render host-api compare"
+  [bench]="core sdk registry vulkan scene loader render host-api compare"
+  [apps]="core sdk registry vulkan scene loader render host-api api compare harness bench"
+  [plugin]="sdk"
+  [embedder]="sdk host-api"
+)
+# Layers that include no Vulkan header: core and the registry link no Vulkan, and the installed
+# host API needs nothing but the standard library.
+no_vulkan=" sdk core registry host-api compare plugin embedder "
+
+roots=(host registry compare harness bench apps sdk/include host/include)
+failures=0
+fail() {
+  echo "include_layers: $1"
+  failures=$((failures + 1))
+}
+
+while IFS= read -r file; do
+  from=$(layer_of "$file")
+  [ "$from" = unchecked ] && continue
+  dir=$(dirname "$file")
+  while IFS= read -r line; do
+    name=$(sed -E 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*["<]([^">]+)[">].*/\1/' <<<"$line")
+    if [[ "$line" =~ \< ]]; then
+      if [[ "$name" == vulkan/* && "$no_vulkan" == *" $from "* ]]; then
+        fail "$file includes <$name>, but $from includes no Vulkan header"
+      fi
+      if [ "$from" = host-api ] && [[ "$name" == */* ]] && [[ "$name" != acetate/host/* ]]; then
+        fail "$file includes <$name>; the installed host API uses the standard library only"
+      fi
+    fi
+    target=""
+    if [ -f "$dir/$name" ]; then
+      target=$(realpath -m --relative-to=. "$dir/$name")
+    else
+      for root in "${roots[@]}"; do
+        if [ -f "$root/$name" ]; then
+          target="$root/$name"
+          break
+        fi
+      done
+    fi
+    [ -z "$target" ] && continue  # a system or generated header
+    to=$(layer_of "$target")
+    [ "$to" = "$from" ] && continue
+    if [[ " ${may_use[$from]} " != *" $to "* ]]; then
+      fail "$file includes \"$name\" ($to), which $from may not use (it may use: ${may_use[$from]:-nothing else})"
+    fi
+  done < <(grep -E '^[[:space:]]*#[[:space:]]*include[[:space:]]*["<]' "$file")
+done < <(git ls-files -- '*.h' '*.hpp' '*.cpp' 2>/dev/null || find . -name '*.[ch]pp' -o -name '*.h')
+
+if [ "$failures" -eq 0 ]; then
+  echo "include_layers: every include goes down the layers"
+fi
+exit "$failures"

@@ -1,0 +1,72 @@
+// A program for fork_server_test.cpp: started as `fork_server_probe fork-server` it serves
+// forks (core/fork_server.hpp); each child runs one command of its arguments:
+//   print TEXT   prints TEXT on stdout and returns 0
+//   return N     returns N from the child's entry
+//   exit N       calls exit(N), as a plugin might
+//   raise N      raises signal N
+//   sleep S      sleeps S seconds, then returns 0
+//   fds          prints the child's open descriptors and what stdin is, returns 0
+//   mark FILE    writes this process's pid into FILE, returns 0
+// It links the host library like acetate-harness, so the server holds the same libraries (and
+// the idle threads some of them start at load) that a child must survive without.
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "core/fork_server.hpp"
+#include "scene/image_io.hpp"
+
+namespace {
+
+int run_command(int argc, char** argv) {
+    if (argc < 2) return 2;
+    const std::string what = argv[1];
+    const std::string arg = argc > 2 ? argv[2] : "";
+    if (what == "print") {
+        std::printf("%s\n", arg.c_str());
+        return 0;
+    }
+    if (what == "return") return std::atoi(arg.c_str());
+    if (what == "exit") std::exit(std::atoi(arg.c_str()));
+    if (what == "raise") {
+        ::raise(std::atoi(arg.c_str()));
+        return 3;
+    }
+    if (what == "sleep") {
+        std::this_thread::sleep_for(std::chrono::duration<double>(std::atof(arg.c_str())));
+        return 0;
+    }
+    if (what == "fds") {
+        // Every open descriptor but the one listing them.
+        for (const auto& entry : std::filesystem::directory_iterator("/proc/self/fd")) {
+            std::error_code ec;
+            const auto target = std::filesystem::read_symlink(entry.path(), ec).string();
+            if (target.find("/fd") == std::string::npos || target.rfind("/proc/", 0) != 0)
+                std::printf("fd %s %s\n", entry.path().filename().c_str(), target.c_str());
+        }
+        return 0;
+    }
+    if (what == "mark") {
+        std::ofstream(arg) << ::getpid() << "\n";
+        return 0;
+    }
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    // Touch the host library, as acetate-harness does, so it is loaded with all it brings.
+    (void)acetate::srgb_to_linear(0.5f);
+    if (argc == 2 && std::strcmp(argv[1], "fork-server") == 0)
+        return acetate::serve_forks(run_command);
+    return run_command(argc, argv);
+}
