@@ -18,6 +18,7 @@
 #include <set>
 #include <sstream>
 
+#include "report_fixtures.hpp"
 #include "report_junit.hpp"
 #include "test_files.hpp"
 
@@ -39,21 +40,13 @@ std::set<std::string> names_in(const fs::path& dir) {
     return names;
 }
 
-CheckResult check(std::string name, Verdict verdict, std::string message) {
-    CheckResult c;
-    c.check = std::move(name);
-    c.verdict = verdict;
-    c.message = std::move(message);
-    return c;
-}
+using report_test::check;
 
+// A case as report_fixtures.hpp builds it, with a time and a reproduce line (JUnit shows both).
 CaseResult case_with(std::string id, Verdict verdict, std::vector<CheckResult> checks = {},
                      std::string message = "") {
-    CaseResult c;
-    c.id = std::move(id);
-    c.verdict = verdict;
-    c.checks = std::move(checks);
-    c.message = std::move(message);
+    CaseResult c =
+        report_test::case_with(std::move(id), verdict, std::move(checks), std::move(message));
     c.seconds = 0.25;
     c.reproduce = fmt::format("acetate-harness validate bloom.so --case {} --seed 42", c.id);
     return c;

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "report.hpp"
+#include "report_fixtures.hpp"
 #include "test_files.hpp"
 
 namespace acetate::harness {
@@ -29,23 +30,8 @@ using nlohmann::json;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-CheckResult check(std::string name, Verdict verdict, std::string message = "") {
-    CheckResult c;
-    c.check = std::move(name);
-    c.verdict = verdict;
-    c.message = std::move(message);
-    return c;
-}
-
-CaseResult case_with(std::string id, Verdict verdict, std::vector<CheckResult> checks = {},
-                     std::string message = "") {
-    CaseResult c;
-    c.id = std::move(id);
-    c.verdict = verdict;
-    c.checks = std::move(checks);
-    c.message = std::move(message);
-    return c;
-}
+using report_test::case_with;
+using report_test::check;
 
 // A case that exercises every field, with the values JSON cannot hold as numbers.
 CaseResult full_case() {
