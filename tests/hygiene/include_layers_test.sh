@@ -9,6 +9,7 @@
 # then the include roots) and the folder it lands in must be one the including folder may use.
 # A failure names the file, the include and the rule; the exit status is the number of them.
 set -u
+scripts=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../scripts" && pwd)
 cd "${1:?usage: include_layers_test.sh SOURCE_DIR}" || exit 2
 
 # The layer of a file, by its folder.
@@ -57,6 +58,7 @@ no_vulkan=" sdk core registry host-api compare plugin embedder "
 
 roots=(host registry compare harness bench apps sdk/include host/include)
 failures=0
+checked=0
 fail() {
   echo "include_layers: $1"
   failures=$((failures + 1))
@@ -94,9 +96,14 @@ while IFS= read -r file; do
       fail "$file includes \"$name\" ($to), which $from may not use (it may use: ${may_use[$from]:-nothing else})"
     fi
   done < <(grep -E '^[[:space:]]*#[[:space:]]*include[[:space:]]*["<]' "$file")
-done < <(git ls-files -- '*.h' '*.hpp' '*.cpp' 2>/dev/null || find . -name '*.[ch]pp' -o -name '*.h')
+  checked=$((checked + 1))
+done < <(bash "$scripts/source-files.sh" . h hpp cpp)
 
+if [ "$checked" -eq 0 ]; then
+  echo "include_layers: no source file found under $PWD"
+  exit 1
+fi
 if [ "$failures" -eq 0 ]; then
-  echo "include_layers: every include goes down the layers"
+  echo "include_layers: every include of $checked files goes down the layers"
 fi
 exit "$failures"

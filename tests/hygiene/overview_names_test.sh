@@ -7,10 +7,12 @@
 # being one unit) its stem with any extension: `atomic_file.hpp` names atomic_file.cpp too.
 # A failure names each file the page does not mention; the exit status is their number.
 set -u
+scripts=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../scripts" && pwd)
 cd "${1:?usage: overview_names_test.sh SOURCE_DIR}" || exit 2
 page=docs/OVERVIEW.md
 [ -f "$page" ] || { echo "overview_names: $page is missing"; exit 1; }
 missing=0
+checked=0
 while IFS= read -r file; do
   stem=$(basename "$file")
   stem=${stem%.*}
@@ -18,9 +20,14 @@ while IFS= read -r file; do
     echo "overview_names: $page does not name $file"
     missing=$((missing + 1))
   fi
-done < <(git ls-files -- '*.h' '*.hpp' '*.cpp' '*.frag' '*.vert' '*.comp' '*.glsl' |
+  checked=$((checked + 1))
+done < <(bash "$scripts/source-files.sh" . h hpp cpp frag vert comp glsl |
            grep -vE '^(tests/plugins/|tests/abi_1_0/|examples/)')
+if [ "$checked" -eq 0 ]; then
+  echo "overview_names: no source file found under $PWD"
+  exit 1
+fi
 if [ "$missing" -eq 0 ]; then
-  echo "overview_names: $page names every source file"
+  echo "overview_names: $page names every one of $checked source files"
 fi
 exit "$missing"
