@@ -26,6 +26,51 @@ Result<json> read_json(const fs::path& file) {
     return read_json_file(file, kMaxHarnessFileBytes, "a harness file");
 }
 
+// What a case's child left, as a result: its own result.json, or CRASH / TIMEOUT / FAIL with
+// the cause. Id, seed and the other fields of the case are the caller's.
+CaseResult case_result(const ChildJob& job, const fs::path& directory,
+                       const ChildOutcome& outcome) {
+    CaseResult result;
+    const std::string log = tail_of_file(job.log, 4000);
+    result.log = log;
+    // The child writes result.json last, just before it returns 0: a status 0 without it is
+    // the plugin's exit(0), handled with the other exits below.
+    std::error_code ec;
+    const bool wrote_result = fs::exists(case_result_file(directory), ec);
+    if (outcome.started && !outcome.timed_out && outcome.exit_code == 0 && wrote_result) {
+        auto parsed = read_json(case_result_file(directory));
+        auto read = parsed ? case_result_from_json(*parsed, "result.json")
+                           : Result<CaseResult>(parsed.error());
+        if (read) {
+            result = std::move(read.value());
+            result.log = log;
+        } else {
+            result.verdict = Verdict::Crash;
+            result.message = "the child wrote no readable result: " + read.error().message;
+        }
+    } else if (outcome.timed_out) {
+        result.verdict = Verdict::Timeout;
+        result.message = outcome.message;
+    } else if (outcome.signal || (outcome.started && outcome.exit_code != kChildSetupFailure)) {
+        // Killed by a signal, or exited on its own with a status the harness never uses (the
+        // plugin called exit()): either way the plugin took the process down. The log's last
+        // lines usually say why (an assertion, the plugin's own error message).
+        result.verdict = Verdict::Crash;
+        result.message = with_log(plugin_ended(outcome, "during the case"), log);
+    } else {
+        // The child ran but could not run the case (no device, an unwritable folder): the case
+        // failed, and its last log line says why.
+        result.verdict = Verdict::Fail;
+        result.message = fmt::format("{}: {}", outcome.message, last_line(log));
+        CheckResult run_check;
+        run_check.check = "run";
+        run_check.verdict = Verdict::Fail;
+        run_check.message = "the case could not run: " + result.message;
+        result.checks.push_back(run_check);
+    }
+    return result;
+}
+
 }  // namespace
 
 std::string case_folder(const std::string& id) {
@@ -89,62 +134,52 @@ std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpe
         std::string error;
         server = ForkServer::start({o.self.string(), kForkServerCommand}, error);
     }
-    run_children(
-        jobs, o.jobs,
-        [&](size_t i, const ChildOutcome& outcome) {
-            CaseResult result;
-            const std::string log = tail_of_file(jobs[i].log, 4000);
-            // The child writes result.json last, just before it returns 0: a status 0 without it
-            // is the plugin's exit(0), handled with the other exits below.
-            std::error_code ec;
-            const bool wrote_result = fs::exists(case_result_file(directories[i]), ec);
-            if (outcome.started && !outcome.timed_out && outcome.exit_code == 0 && wrote_result) {
-                auto parsed = read_json(case_result_file(directories[i]));
-                auto read = parsed ? case_result_from_json(*parsed, "result.json")
-                                   : Result<CaseResult>(parsed.error());
-                if (read)
-                    result = std::move(read.value());
-                else {
-                    result.verdict = Verdict::Crash;
-                    result.message = "the child wrote no readable result: " + read.error().message;
-                }
-            } else if (outcome.timed_out) {
-                result.verdict = Verdict::Timeout;
-                result.message = outcome.message;
-            } else if (outcome.signal ||
-                       (outcome.started && outcome.exit_code != kChildSetupFailure)) {
-                // Killed by a signal, or exited on its own with a status the harness never uses
-                // (the plugin called exit()): either way the plugin took the process down. The
-                // log's last lines usually say why (an assertion, the plugin's own error message).
-                result.verdict = Verdict::Crash;
-                result.message = with_log(plugin_ended(outcome, "during the case"), log);
-            } else {
-                // The child ran but could not run the case (no device, an unwritable folder): the
-                // case failed, and its last log line says why.
-                result.verdict = Verdict::Fail;
-                result.message = fmt::format("{}: {}", outcome.message, last_line(log));
-                CheckResult run_check;
-                run_check.check = "run";
-                run_check.verdict = Verdict::Fail;
-                run_check.message = "the case could not run: " + result.message;
-                result.checks.push_back(run_check);
-            }
-            result.id = cases[i].id;
-            result.description = cases[i].description;
-            result.seed = cases[i].seed;
-            result.inputs = cases[i].inputs;
-            result.seconds = outcome.seconds;
-            result.reproduce = o.reproduce ? o.reproduce(cases[i]) : std::string();
-            result.log = log;
-            ++run.done;
+    // A case killed at the time limit runs once more, alone in a fresh process, before its
+    // TIMEOUT counts: the limit counts CPU time (core/child_process.hpp), and a second run
+    // tells a plugin that hangs from a case that was starved by something else.
+    std::vector<size_t> timed_out;
+    std::vector<std::string> first_timeouts(cases.size());
+    auto finish = [&](size_t i, const ChildOutcome& outcome, bool retried) {
+        if (outcome.timed_out && !retried) {
+            timed_out.push_back(i);
+            first_timeouts[i] = outcome.message;
             if (!o.quiet)
-                std::printf("[%zu/%zu] %-28s %-7s %5.1f s%s%s\n", run.done, run.total,
-                            result.id.c_str(), to_string(result.verdict), result.seconds,
-                            result.message.empty() ? "" : "  ", result.message.c_str());
-            std::fflush(stdout);
-            results[i] = std::move(result);
-        },
+                std::printf("  %s: %s; running it once more\n", cases[i].id.c_str(),
+                            outcome.message.c_str());
+            return;
+        }
+        CaseResult result = case_result(jobs[i], directories[i], outcome);
+        if (retried && outcome.timed_out)
+            result.message += "; the same when run once more in a fresh process";
+        else if (retried)
+            result.message = fmt::format(
+                "{}{}timed out once ({}), then finished when run once more in a fresh process",
+                result.message, result.message.empty() ? "" : "; ", first_timeouts[i]);
+        result.id = cases[i].id;
+        result.description = cases[i].description;
+        result.seed = cases[i].seed;
+        result.inputs = cases[i].inputs;
+        result.seconds = outcome.seconds;
+        result.reproduce = o.reproduce ? o.reproduce(cases[i]) : std::string();
+        ++run.done;
+        if (!o.quiet)
+            std::printf("[%zu/%zu] %-28s %-7s %5.1f s%s%s\n", run.done, run.total,
+                        result.id.c_str(), to_string(result.verdict), result.seconds,
+                        result.message.empty() ? "" : "  ", result.message.c_str());
+        std::fflush(stdout);
+        results[i] = std::move(result);
+    };
+    run_children(
+        jobs, o.jobs, [&](size_t i, const ChildOutcome& outcome) { finish(i, outcome, false); },
         server.get());
+    if (!timed_out.empty()) {
+        std::vector<ChildJob> again;
+        for (size_t i : timed_out) again.push_back(jobs[i]);
+        run_children(
+            again, 1,
+            [&](size_t k, const ChildOutcome& outcome) { finish(timed_out[k], outcome, true); },
+            server.get());
+    }
     return results;
 }
 

@@ -9,7 +9,6 @@ namespace acetate::harness {
 // contract_cases.cpp
 Result<void> run_contract(const CaseContext& c, Session& s, CaseWriter& w);
 Result<void> run_disconnected(const CaseContext& c, Session& s, CaseWriter& w);
-Result<void> run_undefined(const CaseContext& c, Session& s, CaseWriter& w);
 // isolation_cases.cpp
 Result<void> run_determinism(const CaseContext& c, Session& s, CaseWriter& w);
 Result<void> run_state_isolation(const CaseContext& c, Session& s, CaseWriter& w);

@@ -98,6 +98,20 @@ void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Pla
     }
     p.add(p.contract("floors/eight", "eight floors, the plugin on every one (or the composite)",
                      128, 96, Pattern::Standard, 8));
+    p.add(p.contract("sizes/wide-floors", "three floors on a wide canvas, 2048x40", 2048, 40,
+                     Pattern::Standard, 3));
+    // ---- the floors' names and tiles ----
+    const std::pair<FloorVariant, const char*> floor_variants[] = {
+        {FloorVariant::LongNames, "floors named with 300 characters"},
+        {FloorVariant::UnicodeNames, "floors named outside ASCII (UTF-8: accents, CJK, an emoji)"},
+        {FloorVariant::TopFloorEmpty, "the top floor of two has no tile at all"},
+    };
+    for (const auto& [variant, what] : floor_variants) {
+        CaseSpec s = p.contract(std::string("floors/") + to_string(variant), what, 96, 64,
+                                Pattern::Standard, 2);
+        s.floor_variant = variant;
+        p.add(s);
+    }
 
     // ---- lights (a global effect sees none) ----
     if (floor_effect) {
@@ -110,6 +124,11 @@ void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Pla
             {LightSet::Huge, "three lights with a radius of 10^6 pixels"},
             {LightSet::Sun, "three lights at several heights and a sun at 40 degrees"},
             {LightSet::GrazingSun, "one light and a sun on the horizon (elevation 0)"},
+            {LightSet::ZenithSun, "one light and a sun overhead (elevation 90, azimuth -360)"},
+            {LightSet::OnTheFloor,
+             "three lights at height exactly 0 on whole-pixel corners: (0, 0), the canvas's "
+             "bottom-right corner and its centre"},
+            {LightSet::Dark, "lights and a sun of colour 0 or intensity 0"},
         };
         for (const auto& [lights, what] : light_cases) {
             CaseSpec s = p.contract(std::string("lights/") + to_string(lights), what);
@@ -125,6 +144,8 @@ void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Pla
             {MaskFill::Empty, "every mask 0"},
             {MaskFill::Full, "every mask 1"},
             {MaskFill::Partial, "masks on half of the tile, 0 on the other half"},
+            {MaskFill::AboveOne, "masks from 1 to 4 (data: the format does not bound them)"},
+            {MaskFill::Thin, "one-pixel lines of 1 on 0, along the tile's edges and through it"},
         };
         for (const auto& [masks, what] : mask_cases) {
             CaseSpec s = p.contract(std::string("masks/") + to_string(masks), what);
@@ -148,6 +169,14 @@ void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Pla
         CaseSpec s = p.contract("params/preset-" + preset, "preset \"" + preset + "\"");
         s.preset = preset;
         p.add(s);
+        if (plugin.params.empty()) continue;
+        // The scene's values override the preset's: every parameter at its maximum over it.
+        s = p.contract("params/preset-" + preset + "-overridden",
+                       "preset \"" + preset + "\" with every parameter set to its maximum");
+        s.preset = preset;
+        s.params = all_params_at(plugin, true);
+        s.inputs["params"] = "preset " + preset + ", all overridden at maximum";
+        p.add(s);
     }
     const int sweep_points = 3 + strictness;  // 8 at the default strictness
     for (const ParamInfo& param : plugin.params) {
@@ -164,10 +193,13 @@ void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Pla
     }
 
     // ---- time, frames, loads ----
-    const std::pair<float, const char*> times[] = {
-        {0.37f, "fractional"}, {-2.5f, "negative"}, {1.0e5f, "large"}};
+    // 2.99999999 s: its fraction, 0.99999999, rounds up to 1.0 as a float.
+    const std::pair<double, const char*> times[] = {{0.37, "fractional"},
+                                                    {-2.5, "negative"},
+                                                    {1.0e5, "large"},
+                                                    {2.99999999, "fraction-rounds-up"}};
     for (const auto& [time, name] : times) {
-        CaseSpec s = p.contract(std::string("time/") + name, fmt::format("time {:g} s", time));
+        CaseSpec s = p.contract(std::string("time/") + name, fmt::format("time {:.9g} s", time));
         s.time = time;
         p.add(s);
     }
@@ -232,14 +264,6 @@ void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Pla
                                 "each parameter at its minimum and maximum must change the "
                                 "output (lights, masks and three times given)");
         s.kind = CaseKind::Disconnected;
-        p.add(s);
-    }
-    for (Pattern pattern : {Pattern::Standard, Pattern::Hdr}) {
-        CaseSpec s = p.contract(std::string("undefined/") + to_string(pattern),
-                                "min, max, clamp and smoothstep checked for NaN operands and "
-                                "inverted edges",
-                                128, 96, pattern, 2);
-        s.kind = CaseKind::Undefined;
         p.add(s);
     }
 }

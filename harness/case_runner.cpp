@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "case_kinds.hpp"
+#include "process_hygiene.hpp"
 
 namespace acetate::harness {
 
@@ -18,6 +19,8 @@ Result<CaseResult> run_case(const CaseContext& c) {
     if (ec)
         return make_error(ErrorCode::Io, fmt::format("{}: cannot create: {}",
                                                      c.case_directory.string(), ec.message()));
+    // Every plugin call of the case (loads, builds, unloads) is compared before and after.
+    ProcessHygieneWatcher hygiene;
     auto session = open_session(c);
     if (!session) return session.error();
     CaseWriter writer(c);
@@ -41,9 +44,6 @@ Result<CaseResult> run_case(const CaseContext& c) {
         case CaseKind::Integration:
             ran = run_integration(c, *session, writer);
             break;
-        case CaseKind::Undefined:
-            ran = run_undefined(c, *session, writer);
-            break;
         case CaseKind::Golden:
             ran = run_golden(c, *session, writer);
             break;
@@ -52,6 +52,7 @@ Result<CaseResult> run_case(const CaseContext& c) {
     // Close Vulkan first: messages at teardown (objects left alive) count too.
     session->renderer.reset();
     session->context.reset();
+    writer.add(hygiene.check());
     return writer.finish();
 }
 

@@ -116,7 +116,7 @@ SceneLayout case_layout(const CaseContext& c, json params) {
     layout.width = s.width;
     layout.height = s.height;
     layout.floor_effects.resize(s.floors);
-    const InputChoice choice{s.pattern, s.lights, s.masks};
+    const InputChoice choice{s.pattern, s.lights, s.masks, s.floor_variant};
     for (uint32_t f = 0; f < s.floors; ++f) {
         layout.floors.push_back(
             make_floor_input(choice, s.width, s.height, f, s.floors, s.seed, c.plugin.masks));
@@ -129,21 +129,21 @@ SceneLayout case_layout(const CaseContext& c, json params) {
 
 // ---- captures ---------------------------------------------------------------------------
 
-Result<ImageRGBA> render_floor(Compositor& comp, uint32_t floor, float time) {
+Result<ImageRGBA> render_floor(Compositor& comp, uint32_t floor, double time) {
     ACETATE_TRY(comp.render(floor, time));
     return comp.read_active_floor();
 }
 
 // What the plugin produced with floor `floor` active: that floor's target (a floor effect),
 // or the composite it ran on (a global effect).
-Result<ImageRGBA> plugin_output(Compositor& comp, bool global, uint32_t floor, float time) {
+Result<ImageRGBA> plugin_output(Compositor& comp, bool global, uint32_t floor, double time) {
     if (!global) return render_floor(comp, floor, time);
     ACETATE_TRY(comp.render(floor, time));
     return comp.read_accumulation();
 }
 
 // A floor's target before and after its effects.
-Result<Capture> capture_floor(Compositor& comp, uint32_t floor, float time) {
+Result<Capture> capture_floor(Compositor& comp, uint32_t floor, double time) {
     Capture capture;
     comp.set_effects_enabled(false);
     auto input = render_floor(comp, floor, time);
@@ -157,7 +157,7 @@ Result<Capture> capture_floor(Compositor& comp, uint32_t floor, float time) {
 }
 
 // The composite of floors 0..top before and after the global effects.
-Result<Capture> capture_global(Compositor& comp, uint32_t top, float time) {
+Result<Capture> capture_global(Compositor& comp, uint32_t top, double time) {
     Capture capture;
     comp.set_effects_enabled(true, false);
     auto before = comp.render(top, time);
@@ -166,6 +166,21 @@ Result<Capture> capture_global(Compositor& comp, uint32_t top, float time) {
     if (!input) return input.error();
     ACETATE_TRY(comp.render(top, time));
     auto output = comp.read_accumulation();
+    if (!output) return output.error();
+    capture.input = std::move(input.value());
+    capture.output = std::move(output.value());
+    return capture;
+}
+
+Result<Capture> capture_global_effect(Compositor& comp, uint32_t top, double time, uint32_t index) {
+    Capture capture;
+    comp.set_global_effects_run(index);
+    auto before = comp.render(top, time);
+    auto input = before ? comp.read_accumulation() : Result<ImageRGBA>(before.error());
+    comp.set_global_effects_run(index + 1);
+    auto after = input ? comp.render(top, time) : Result<FrameStats>(input.error());
+    auto output = after ? comp.read_accumulation() : Result<ImageRGBA>(after.error());
+    comp.set_effects_enabled(true, true);
     if (!output) return output.error();
     capture.input = std::move(input.value());
     capture.output = std::move(output.value());

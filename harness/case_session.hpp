@@ -42,14 +42,17 @@ struct Capture {
     ImageRGBA input, output;
 };
 
-Result<ImageRGBA> render_floor(Compositor& comp, uint32_t floor, float time);
+Result<ImageRGBA> render_floor(Compositor& comp, uint32_t floor, double time);
 // What the plugin produced with floor `floor` active: that floor's target (a floor effect),
 // or the composite it ran on (a global effect).
-Result<ImageRGBA> plugin_output(Compositor& comp, bool global, uint32_t floor, float time);
+Result<ImageRGBA> plugin_output(Compositor& comp, bool global, uint32_t floor, double time);
 // A floor's target before and after its effects.
-Result<Capture> capture_floor(Compositor& comp, uint32_t floor, float time);
+Result<Capture> capture_floor(Compositor& comp, uint32_t floor, double time);
 // The composite of floors 0..top before and after the global effects.
-Result<Capture> capture_global(Compositor& comp, uint32_t top, float time);
+Result<Capture> capture_global(Compositor& comp, uint32_t top, double time);
+// The same around global effect `index` alone: the composite after the global effects before
+// it, and after it too (each global effect is judged on its own input and output).
+Result<Capture> capture_global_effect(Compositor& comp, uint32_t top, double time, uint32_t index);
 
 // ---- results ----------------------------------------------------------------------------
 

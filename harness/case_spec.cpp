@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <random>
 
 #include "core/json_fields.hpp"
@@ -15,13 +16,19 @@ using nlohmann::json;
 
 constexpr const char* kKindNames[] = {"contract",        "determinism",  "state-isolation",
                                       "floor-isolation", "disconnected", "integration",
-                                      "undefined",       "golden"};
+                                      "golden"};
 constexpr const char* kPatternNames[] = {"standard", "alpha-ramp", "hdr",
                                          "empty",    "opaque",     "subnormal"};
-constexpr const char* kLightNames[] = {"three",       "none",       "one",
-                                       "many",        "off-canvas", "tiny-radius",
-                                       "huge-radius", "sun",        "grazing-sun"};
-constexpr const char* kMaskNames[] = {"content", "absent", "empty", "full", "partial"};
+constexpr const char* kLightNames[] = {"three",       "none",        "one",          "many",
+                                       "off-canvas",  "tiny-radius", "huge-radius",  "sun",
+                                       "grazing-sun", "zenith-sun",  "on-the-floor", "dark"};
+static_assert(std::size(kLightNames) == kLightSetCount);
+constexpr const char* kMaskNames[] = {"content", "absent",    "empty", "full",
+                                      "partial", "above-one", "thin"};
+static_assert(std::size(kMaskNames) == kMaskFillCount);
+constexpr const char* kFloorVariantNames[] = {"standard", "long-names", "unicode-names",
+                                              "top-floor-empty"};
+static_assert(std::size(kFloorVariantNames) == kFloorVariantCount);
 constexpr const char* kPoisonNames[] = {"none", "nan", "large", "plain"};
 
 template <class Enum, size_t N>
@@ -41,6 +48,9 @@ const char* to_string(Pattern pattern) {
 }
 const char* to_string(LightSet lights) {
     return kLightNames[int(lights)];
+}
+const char* to_string(FloorVariant floors) {
+    return kFloorVariantNames[int(floors)];
 }
 const char* to_string(MaskFill masks) {
     return kMaskNames[int(masks)];
@@ -153,6 +163,7 @@ json to_json(const CaseSpec& s) {
             {"companions", companions},
             {"lights", to_string(s.lights)},
             {"masks", to_string(s.masks)},
+            {"floor_variant", to_string(s.floor_variant)},
             {"plugin_floor", s.plugin_floor},
             {"frames", s.frames},
             {"prior_loads", s.prior_loads},
@@ -182,12 +193,12 @@ Enum enum_field(const json& j, const std::string& path, std::string_view key,
 
 CaseSpec read_case_spec(const json& j, const std::string& path) {
     using namespace json_fields;
-    expect_object(
-        j, path,
-        {"id",     "description",  "kind",   "seed",        "width",    "height",     "pattern",
-         "floors", "params",       "preset", "time",        "switches", "companions", "lights",
-         "masks",  "plugin_floor", "frames", "prior_loads", "sweep",    "poison",     "inputs"},
-        {"reference", "scene_file"});
+    expect_object(j, path,
+                  {"id",         "description", "kind",   "seed",         "width",  "height",
+                   "pattern",    "floors",      "params", "preset",       "time",   "switches",
+                   "companions", "lights",      "masks",  "plugin_floor", "frames", "prior_loads",
+                   "sweep",      "poison",      "inputs", "floor_variant"},
+                  {"reference", "scene_file"});
     CaseSpec s;
     s.id = text(j, path, "id");
     s.description = text(j, path, "description");
@@ -195,6 +206,7 @@ CaseSpec read_case_spec(const json& j, const std::string& path) {
     s.pattern = enum_field<Pattern>(j, path, "pattern", kPatternNames);
     s.lights = enum_field<LightSet>(j, path, "lights", kLightNames);
     s.masks = enum_field<MaskFill>(j, path, "masks", kMaskNames);
+    s.floor_variant = enum_field<FloorVariant>(j, path, "floor_variant", kFloorVariantNames);
     s.poison = enum_field<Poison>(j, path, "poison", kPoisonNames);
     const int64_t plugin_floor = integer(j, path, "plugin_floor");
     if (plugin_floor < INT32_MIN || plugin_floor > INT32_MAX)
@@ -214,7 +226,7 @@ CaseSpec read_case_spec(const json& j, const std::string& path) {
     s.floors = uint32_t(unsigned_integer(j, path, "floors", UINT32_MAX));
     s.params = j.at("params");
     s.preset = text(j, path, "preset");
-    s.time = finite_float(j, path, "time");
+    s.time = finite_number(j.at("time"), field(path, "time"));
     s.switches = uint32_t(unsigned_integer(j, path, "switches", UINT32_MAX));
     s.reference = j.value("reference", json());
     if (const json* scene_file = optional(j, "scene_file"))

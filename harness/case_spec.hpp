@@ -61,7 +61,6 @@ enum class CaseKind {
     FloorIsolation,  // the composite with and without the effect, away from its floor
     Disconnected,    // every parameter at min and at max must change something
     Integration,     // with the other integrated plugins, against a CPU-built reference
-    Undefined,       // GLSL recompiled with checked min/max/clamp/smoothstep: hidden NaN
     Golden,          // a fixed scene rendered and compared with the blessed reference image
 };
 const char* to_string(CaseKind kind);
@@ -70,13 +69,37 @@ const char* to_string(CaseKind kind);
 enum class Pattern { Standard, AlphaRamp, Hdr, Empty, Opaque, Subnormal };
 const char* to_string(Pattern pattern);
 // The lights every floor has (synthetic_inputs.hpp): three over the canvas, none, one, more
-// than any preset's cap, off the canvas, with a tiny radius, with a huge one.
-enum class LightSet { Standard, None, One, Many, OffCanvas, Tiny, Huge, Sun, GrazingSun };
+// than any preset's cap, off the canvas, with a tiny radius, with a huge one; a sun at 40
+// degrees, on the horizon (0) and overhead (90); lights on the floor (height exactly 0) at
+// whole-pixel corners of the canvas; lights and a sun of colour 0 and intensity 0.
+enum class LightSet {
+    Standard,
+    None,
+    One,
+    Many,
+    OffCanvas,
+    Tiny,
+    Huge,
+    Sun,
+    GrazingSun,
+    ZenithSun,
+    OnTheFloor,
+    Dark,
+};
+inline constexpr int kLightSetCount = 12;
 const char* to_string(LightSet lights);
 // What the tiles' masks hold, for each kind the plugin reads: varying content, no mask at all
-// (the host gives a transparent texture), all 0, all 1, content on half the tile only.
-enum class MaskFill { Content, Absent, Empty, Full, Partial };
+// (the host gives a transparent texture), all 0, all 1, content on half the tile only, values
+// from 1 to 4 (masks are data: the format does not bound them), one-pixel lines of 1 on 0
+// (along the tile's edges too).
+enum class MaskFill { Content, Absent, Empty, Full, Partial, AboveOne, Thin };
+inline constexpr int kMaskFillCount = 7;
 const char* to_string(MaskFill masks);
+// The floors' names and tiles: "floor<N>" with one tile each; names of 300 characters; names
+// outside ASCII (UTF-8); the top floor without any tile.
+enum class FloorVariant { Standard, LongNames, UnicodeNames, TopFloorEmpty };
+inline constexpr int kFloorVariantCount = 4;
+const char* to_string(FloorVariant floors);
 // What fills memory a plugin may read before writing it (intermediate targets, `result`): it
 // differs between processes, so reading it fails `finite` (NaN) or `determinism` (two finite
 // values), instead of happening to read zeros. docs/harness.md, "Poisoned memory".
@@ -102,13 +125,14 @@ struct CaseSpec {
                           // composite (a global one), unless the kind says otherwise
     nlohmann::json params = nlohmann::json::object();  // scene params of the plugin under test
     std::string preset;
-    float time = 0;
-    uint32_t switches = 0;                    // StateIsolation: floor switches for the memory check
+    double time = 0;        // seconds; double, as a host passes it (a fraction can round up to 1)
+    uint32_t switches = 0;  // StateIsolation: floor switches for the memory check
     std::vector<CompanionPlugin> companions;  // Integration
 
     // The rest of the input model (docs/harness.md, "The input model").
     LightSet lights = LightSet::Standard;
     MaskFill masks = MaskFill::Content;
+    FloorVariant floor_variant = FloorVariant::Standard;
     int32_t plugin_floor = -1;  // a floor effect on this floor only; -1: on every floor
     uint32_t frames = 1;        // frames rendered in the load, the last one checked
     uint32_t prior_loads = 0;   // other scenes loaded and rendered in the process first

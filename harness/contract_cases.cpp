@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "case_kinds.hpp"
+#include "input_model.hpp"
 
 namespace acetate::harness {
 
@@ -19,6 +20,11 @@ namespace {
 Result<CheckResult> check_reach(const CaseContext& c, Session& s, CaseWriter& w, const json& params,
                                 const std::string& name, const std::vector<FloorImages>& clipped,
                                 std::map<int64_t, ImageRGBA>& heat);
+
+Result<CheckResult> check_undefined(const CaseContext& c, Session& s, CaseWriter& w,
+                                    const json& params, const std::string& name,
+                                    EffectPassCounts passes, const std::vector<FloorImages>& plain,
+                                    std::map<int64_t, ImageRGBA>& heat);
 
 // One scene of the case in a load of its own: the earlier frames, then each floor that
 // carries the plugin (or the composite) before and after the effects, checked. Returns the
@@ -67,6 +73,12 @@ Result<std::optional<SceneChecks>> check_scene(const CaseContext& c, Session& s,
     SceneChecks out;
     out.checks = check_contract(floors, c.plugin.is_expanding(), &out.heat,
                                 {{-1, nullptr, &composite.value()}});
+    {
+        auto undefined = check_undefined(c, s, w, params, name, (**comp).effect_pass_counts(),
+                                         floors, out.heat["undefined-results"]);
+        if (!undefined) return undefined.error();
+        out.checks.push_back(std::move(undefined.value()));
+    }
     if (!c.plugin.is_global() && (**comp).declares_reach()) {
         auto reach = check_reach(c, s, w, params, name, floors, out.heat["reach"]);
         if (!reach) return reach.error();
@@ -107,6 +119,69 @@ Result<CheckResult> check_reach(const CaseContext& c, Session& s, CaseWriter& w,
     }
     heat = reach.heat_maps();
     return reach.finish();
+}
+
+// The scene once more with the plugin's GLSL compiled with checked min, max, clamp and
+// smoothstep, which give NaN for a NaN operand or inverted edges (the same earlier frames, time
+// and floors). A pixel finite as compiled (`plain`) and not finite when checked is a result
+// the GLSL leaves undefined: llvmpipe launders a NaN through min/max/clamp into a finite
+// value, another driver may not.
+Result<CheckResult> check_undefined(const CaseContext& c, Session& s, CaseWriter& w,
+                                    const json& params, const std::string& name,
+                                    EffectPassCounts passes, const std::vector<FloorImages>& plain,
+                                    std::map<int64_t, ImageRGBA>& heat) {
+    CheckAccumulator undefined(
+        "undefined-results",
+        fmt::format("no NaN operand of min, max or clamp and no smoothstep with edge0 >= edge1 "
+                    "in the {} GLSL pass{}{}",
+                    passes.glsl, passes.glsl == 1 ? "" : "es",
+                    passes.spirv ? fmt::format("; {} pass{} given as SPIR-V could not be checked",
+                                               passes.spirv, passes.spirv == 1 ? "" : "es")
+                                 : ""));
+    if (passes.glsl == 0 && passes.spirv == 0) {
+        CheckResult result = undefined.finish();
+        result.message = "no pass to check: the plugin declared none for this scene's floors";
+        return result;
+    }
+    if (passes.glsl == 0) {
+        CheckResult result = undefined.finish();
+        result.verdict = Verdict::Skip;
+        result.message = fmt::format(
+            "not judged: every one of the {} passes was given as SPIR-V, which the harness cannot "
+            "recompile with checked built-ins",
+            passes.spirv);
+        return result;
+    }
+    LoadOptions how;
+    how.checked_builtins = true;
+    auto comp = load_layout(c, s, w, case_layout(c, params), name + ".checked", how);
+    if (!comp) return comp.error();
+    if (!*comp) return undefined.finish();  // the load failure is recorded already
+    ACETATE_TRY(render_earlier_frames(**comp, c));
+    for (const FloorImages& floor : plain) {
+        const bool global = floor.floor < 0;
+        auto checked = plugin_output(
+            **comp, global, global ? c.spec.floors - 1 : uint32_t(floor.floor), c.spec.time);
+        if (!checked) return checked.error();
+        const ImageRGBA& as_compiled = *floor.output;
+        const FloorImages where{floor.floor, &as_compiled, &checked.value()};
+        for (uint32_t y = 0; y < as_compiled.height; ++y)
+            for (uint32_t x = 0; x < as_compiled.width; ++x) {
+                const float *a = as_compiled.at(x, y), *b = checked->at(x, y);
+                const bool finite_before =
+                    std::all_of(a, a + 4, [](float v) { return std::isfinite(v); });
+                const bool finite_after =
+                    std::all_of(b, b + 4, [](float v) { return std::isfinite(v); });
+                if (finite_before && !finite_after)
+                    undefined.violation(
+                        where, x, y,
+                        fmt::format("{} here only because min, max, clamp or smoothstep was "
+                                    "given a NaN or inverted edges; as compiled it gave {}",
+                                    format_rgba(b), format_rgba(a)));
+            }
+    }
+    heat = undefined.heat_maps();
+    return undefined.finish();
 }
 
 bool any_failing(const std::vector<CheckResult>& checks) {
@@ -157,117 +232,70 @@ Result<void> run_contract(const CaseContext& c, Session& s, CaseWriter& w) {
 // not connected to anything (docs/design.md, L-connected).
 Result<void> run_disconnected(const CaseContext& c, Session& s, CaseWriter& w) {
     constexpr float kTimes[] = {0.0f, 0.37f, 1.9f};
+    // Each parameter at its two ends first, then, only when they give the same output, at
+    // interior points: a periodic parameter (an azimuth of 0..360) has equal ends and is
+    // connected all the same. Connected when any two of its values differ.
+    constexpr int kPoints = 5;
     enum class Others { Default, Min, Max };
-    std::vector<std::string> disconnected;
+    std::vector<std::string> disconnected, periodic;
     for (const ParamInfo& p : c.plugin.params) {
         if (p.min_value == p.max_value) continue;
+        std::vector<float> values = sweep_values(p, kPoints);
+        std::rotate(values.begin() + 1, values.end() - 1, values.end());  // min, max, interior
         bool connected = false;
         for (Others others : {Others::Default, Others::Min, Others::Max}) {
-            std::vector<std::string> digests[2];
-            for (int end = 0; end < 2; ++end) {
+            std::vector<std::string> first;
+            for (size_t i = 0; i < values.size() && !connected; ++i) {
                 json params = json::object();
                 for (const ParamInfo& q : c.plugin.params)
                     if (others != Others::Default)
                         params[q.name] = others == Others::Min ? q.min_value : q.max_value;
-                params[p.name] = end ? p.max_value : p.min_value;
-                const std::string name = fmt::format("{}.{}", p.name, end ? "max" : "min");
+                params[p.name] = values[i];
+                const std::string name = fmt::format("{}.{:g}", p.name, values[i]);
                 auto comp = load_layout(c, s, w, case_layout(c, params), name);
                 if (!comp) return comp.error();
                 if (!*comp) return {};
+                std::vector<std::string> digests;
                 for (float t : kTimes) {
                     ACETATE_TRY((**comp).render(c.spec.floors - 1, t));
                     auto image = c.plugin.is_global() ? (**comp).read_accumulation()
                                                       : (**comp).read_active_floor();
                     if (!image) return image.error();
-                    digests[end].push_back(digest_images({&image.value()}));
+                    digests.push_back(digest_images({&image.value()}));
                 }
+                if (i == 0)
+                    first = std::move(digests);
+                else if (digests != first)
+                    connected = true;
+                if (connected && i >= 2) periodic.push_back(p.name);
             }
-            if (digests[0] != digests[1]) {
-                connected = true;
-                break;
-            }
+            if (connected) break;
         }
         if (!connected) disconnected.push_back(p.name);
     }
     CheckResult check;
     check.check = "disconnected-parameters";
     if (disconnected.empty()) {
-        check.message = fmt::format(
-            "each of the {} parameters changed the output between its minimum and maximum",
-            c.plugin.params.size());
+        check.message = fmt::format("each of the {} parameters changed the output over its range",
+                                    c.plugin.params.size());
+        if (!periodic.empty())
+            check.message += fmt::format(
+                " ({} only between interior values: its minimum and maximum give the same "
+                "output, as a periodic parameter's do)",
+                fmt::join(periodic, ", "));
     } else {
         check.verdict = Verdict::Fail;
         check.violations = disconnected.size();
         check.message = fmt::format(
-            "parameter{} {} changed nothing between minimum and maximum ({}x{} scene with 3 "
-            "lights{}, times 0, 0.37 and 1.9, the other parameters at default, minimum and "
-            "maximum): not connected to the shader?",
-            disconnected.size() == 1 ? "" : "s", fmt::join(disconnected, ", "), c.spec.width,
-            c.spec.height,
+            "parameter{} {} changed nothing over {} values from minimum to maximum ({}x{} scene "
+            "with 3 lights{}, times 0, 0.37 and 1.9, the other parameters at default, minimum "
+            "and maximum): not connected to the shader?",
+            disconnected.size() == 1 ? "" : "s", fmt::join(disconnected, ", "), kPoints,
+            c.spec.width, c.spec.height,
             c.plugin.masks.empty() ? ""
                                    : fmt::format(" and masks {}", fmt::join(c.plugin.masks, ", ")));
     }
     w.add(check);
-    return {};
-}
-
-// The scene twice: as compiled normally, and with the plugin's GLSL compiled with checked
-// min, max, clamp and smoothstep that give NaN for a NaN operand or inverted edges. A pixel
-// finite in the first and not in the second is a result the GLSL leaves undefined: llvmpipe
-// launders a NaN through min/max/clamp into a finite value, another driver may not.
-Result<void> run_undefined(const CaseContext& c, Session& s, CaseWriter& w) {
-    const bool global = c.plugin.is_global();
-    std::vector<uint32_t> floors = plugin_floors(c);
-    if (global) floors = {c.spec.floors - 1};
-    std::vector<ImageRGBA> outputs[2];
-    EffectPassCounts passes;
-    for (int checked = 0; checked < 2; ++checked) {
-        auto comp = load_layout(c, s, w, case_layout(c), checked ? "checked" : "scene",
-                                LoadOptions{checked == 1});
-        if (!comp) return comp.error();
-        if (!*comp) return {};
-        passes = (**comp).effect_pass_counts();
-        for (uint32_t f : floors) {
-            auto out = plugin_output(**comp, global, f, c.spec.time);
-            if (!out) return out.error();
-            outputs[checked].push_back(std::move(out.value()));
-        }
-    }
-    CheckAccumulator undefined(
-        "undefined-results",
-        fmt::format("no NaN operand of min, max or clamp and no smoothstep with edge0 >= edge1 "
-                    "in the {} GLSL pass{}{}",
-                    passes.glsl, passes.glsl == 1 ? "" : "es",
-                    passes.spirv ? fmt::format("; {} pass{} given as SPIR-V could not be checked",
-                                               passes.spirv, passes.spirv == 1 ? "" : "es")
-                                 : ""));
-    for (size_t i = 0; i < floors.size(); ++i) {
-        const ImageRGBA &plain = outputs[0][i], &checked = outputs[1][i];
-        const FloorImages where{global ? -1 : int64_t(floors[i]), &plain, &checked};
-        for (uint32_t y = 0; y < plain.height; ++y)
-            for (uint32_t x = 0; x < plain.width; ++x) {
-                const float *a = plain.at(x, y), *b = checked.at(x, y);
-                const bool finite_before =
-                    std::all_of(a, a + 4, [](float v) { return std::isfinite(v); });
-                const bool finite_after =
-                    std::all_of(b, b + 4, [](float v) { return std::isfinite(v); });
-                if (finite_before && !finite_after)
-                    undefined.violation(
-                        where, x, y,
-                        fmt::format("{} here only because min, max, clamp or smoothstep was "
-                                    "given a NaN or inverted edges; as compiled it gave {}",
-                                    format_rgba(b), format_rgba(a)));
-            }
-    }
-    CheckResult result = undefined.finish();
-    if (passes.glsl == 0 && passes.spirv > 0) {
-        result.verdict = Verdict::Skip;
-        result.message = fmt::format(
-            "not judged: every one of the {} passes was given as SPIR-V, which the harness cannot "
-            "recompile with checked built-ins",
-            passes.spirv);
-    }
-    w.add(std::move(result), &undefined.heat_maps());
     return {};
 }
 

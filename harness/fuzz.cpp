@@ -219,7 +219,7 @@ std::vector<CaseSpec> shrink_candidates(const CaseSpec& f, const PluginInfo& plu
     // Time: 0, half, the whole seconds.
     if (f.time != 0) {
         with([](CaseSpec& s) { s.time = 0; });
-        if (std::abs(f.time) > 1e-3f) with([](CaseSpec& s) { s.time *= 0.5f; });
+        if (std::abs(f.time) > 1e-3) with([](CaseSpec& s) { s.time *= 0.5; });
         if (std::trunc(f.time) != f.time && std::trunc(f.time) != 0)
             with([](CaseSpec& s) { s.time = std::trunc(s.time); });
     }
@@ -227,6 +227,8 @@ std::vector<CaseSpec> shrink_candidates(const CaseSpec& f, const PluginInfo& plu
     if (f.pattern != Pattern::Standard) with([](CaseSpec& s) { s.pattern = Pattern::Standard; });
     if (f.lights != LightSet::Standard) with([](CaseSpec& s) { s.lights = LightSet::Standard; });
     if (f.masks != MaskFill::Content) with([](CaseSpec& s) { s.masks = MaskFill::Content; });
+    if (f.floor_variant != FloorVariant::Standard)
+        with([](CaseSpec& s) { s.floor_variant = FloorVariant::Standard; });
     for (CaseSpec& s : out) s.inputs.clear();  // re-described by the caller
     return out;
 }

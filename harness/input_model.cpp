@@ -46,12 +46,17 @@ const std::vector<InputDimension>& input_dimensions() {
         {"floors", "how many floors the scene has"},
         {"plugin floor", "which floors carry the plugin (its floor index)"},
         {"pixels", "the input pixels: alpha 0, subnormal, ramps, 1; colour up to 65504"},
+        {"floor names and tiles",
+         "the floors' names (plain, 300 characters, beyond ASCII) and a floor without tiles"},
         {"lights",
          "the floor's lights (with heights): none, one, many, off the canvas, radius tiny "
-         "and huge; a sun at 40 degrees and one on the horizon"},
-        {"masks", "the floor's masks: absent, empty, full, partial, with content"},
+         "and huge, on the floor at whole-pixel corners, colour and intensity 0; a sun at 40 "
+         "degrees, on the horizon and overhead"},
+        {"masks",
+         "the floor's masks: absent, empty, full, partial, above 1, one-pixel lines, with "
+         "content"},
         {"params", "the parameters: defaults, ends, presets, sweeps, combinations"},
-        {"time", "acetate_time: 0, fractional, negative, large"},
+        {"time", "acetate_time: 0, fractional, negative, large, a fraction that rounds up to 1"},
         {"frames", "frames rendered within one load before the one checked"},
         {"loads", "other scenes loaded and rendered in the process before this one"},
         {"poison", "what fills memory the plugin may read before writing it"},
@@ -71,8 +76,9 @@ std::map<std::string, std::string> describe_inputs(const CaseSpec& s, const Plug
     set("pixels", to_string(s.pattern));
     set("lights", plugin.is_global() ? "none (global effect)" : to_string(s.lights));
     set("masks", plugin.masks.empty() ? "none read" : to_string(s.masks));
+    set("floor names and tiles", to_string(s.floor_variant));
     set("params", !s.preset.empty() ? "preset " + s.preset : s.params.empty() ? "defaults" : "set");
-    set("time", fmt::format("{:g} s", s.time));
+    set("time", fmt::format("{:.9g} s", s.time));
     set("frames", std::to_string(s.frames));
     set("loads", std::to_string(s.prior_loads));
     set("poison", to_string(s.poison));
@@ -93,7 +99,7 @@ std::vector<std::vector<double>> latin_hypercube(size_t points, size_t dimension
 }
 
 size_t scenario_dimensions(const PluginInfo& plugin) {
-    return 10 + plugin.params.size();
+    return 11 + plugin.params.size();
 }
 
 void scenario_at(const PluginInfo& plugin, std::span<const double> u, CaseSpec& s) {
@@ -106,14 +112,15 @@ void scenario_at(const PluginInfo& plugin, std::span<const double> u, CaseSpec& 
                          ? -1
                          : int32_t(std::min<double>(s.floors - 1, (u[3] - 0.5) * 2 * s.floors));
     s.pattern = category<Pattern>(u[4], 6);
-    s.lights = category<LightSet>(u[5], 9);
-    s.masks = category<MaskFill>(u[6], 5);
+    s.lights = category<LightSet>(u[5], kLightSetCount);
+    s.masks = category<MaskFill>(u[6], kMaskFillCount);
     s.time = time_at(u[7]);
     s.frames = 1 + std::min(3u, uint32_t(u[8] * 4));
     s.prior_loads = std::min(2u, uint32_t(u[9] * 3));
+    s.floor_variant = category<FloorVariant>(u[10], kFloorVariantCount);
     s.params = nlohmann::json::object();
     for (size_t i = 0; i < plugin.params.size(); ++i)
-        s.params[plugin.params[i].name] = param_at(plugin.params[i], u[10 + i]);
+        s.params[plugin.params[i].name] = param_at(plugin.params[i], u[11 + i]);
 }
 
 std::vector<float> sweep_values(const ParamInfo& p, int points) {

@@ -18,7 +18,7 @@ namespace {
 // composited for k = 0, 1, ..., each against the model of the same floors (k + 1 blends, so
 // k + 1 roundings). Effects must be on for the floors and off for the composite.
 Result<std::string> first_departure(Compositor& comp, const std::vector<ReferenceFloor>& floors,
-                                    float time) {
+                                    double time) {
     for (uint32_t k = 0; k < floors.size(); ++k) {
         ACETATE_TRY(comp.render(k, time));
         auto prefix = comp.read_accumulation();
@@ -102,7 +102,10 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
     std::vector<FloorImages> checked;
     std::optional<Capture> global;
     if (c.plugin.is_global()) {
-        auto capture = capture_global(**comp, spec.floors - 1, spec.time);
+        // Judged on its own input and output: the composite after the global effects before
+        // it (an expanding one among them may have grown coverage already), and after it.
+        const uint32_t index = uint32_t(layout.global_effects.size() - 1);
+        auto capture = capture_global_effect(**comp, spec.floors - 1, spec.time, index);
         if (!capture) return capture.error();
         global = std::move(capture.value());
         checked.push_back({-1, &global->input, &global->output});

@@ -136,7 +136,27 @@ std::vector<LightDesc> make_lights(LightSet kind, uint32_t w, uint32_t h, std::m
                 lights.push_back(inside(1.0 + reach * (0.3 + 0.4 * unit(rng))));
             break;
         case LightSet::GrazingSun:
+        case LightSet::ZenithSun:
             lights.push_back(light(w * 0.5, h * 0.5, 1.0 + reach * 0.5));
+            break;
+        case LightSet::OnTheFloor:
+            // On the floor (height exactly 0), at whole-pixel corners: the canvas's top-left
+            // and bottom-right corners and the whole pixel nearest its centre.
+            for (const auto& [x, y] : {std::pair{0.0, 0.0}, std::pair{double(w), double(h)},
+                                       std::pair{std::round(w * 0.5), std::round(h * 0.5)}}) {
+                LightDesc l = light(x, y, 1.0 + reach * 0.5);
+                l.height = 0.0f;
+                lights.push_back(l);
+            }
+            break;
+        case LightSet::Dark:
+            // What the format allows at the bottom of colour and intensity: zero.
+            for (int i = 0; i < 3; ++i) {
+                LightDesc l = inside(1.0 + reach * (0.3 + 0.4 * unit(rng)));
+                if (i != 1) l.color = {0.0f, 0.0f, 0.0f};
+                if (i != 0) l.intensity = 0.0f;
+                lights.push_back(l);
+            }
             break;
     }
     return lights;
@@ -212,6 +232,13 @@ FloorInput make_floor_input(const InputChoice& choice, uint32_t canvas_width,
                 if (choice.masks == MaskFill::Empty) m = 0.0f;
                 if (choice.masks == MaskFill::Full) m = 1.0f;
                 if (choice.masks == MaskFill::Partial && 2 * x >= in.width) m = 0.0f;
+                if (choice.masks == MaskFill::AboveOne) m = 1.0f + 3.0f * m;
+                // One-pixel lines: the tile's edges, and a row and a column through it.
+                if (choice.masks == MaskFill::Thin)
+                    m = x == 0 || y == 0 || x + 1 == in.width || y + 1 == in.height ||
+                                x == in.width / 3 || y == in.height / 2
+                            ? 1.0f
+                            : 0.0f;
                 std::fill_n(mask.at(x, y), 4, m);
             }
         round_to_half(mask);
@@ -220,6 +247,21 @@ FloorInput make_floor_input(const InputChoice& choice, uint32_t canvas_width,
     in.lights = make_lights(choice.lights, canvas_width, canvas_height, rng);
     if (choice.lights == LightSet::Sun) in.sun = SunDesc{30, 40, {1.0f, 0.95f, 0.8f}, 1.5f};
     if (choice.lights == LightSet::GrazingSun) in.sun = SunDesc{200, 0, {1.0f, 0.6f, 0.3f}, 2.0f};
+    // Overhead, at an azimuth a whole turn below 0 (any finite azimuth is allowed).
+    if (choice.lights == LightSet::ZenithSun) in.sun = SunDesc{-360, 90, {1.0f, 1.0f, 0.9f}, 1.0f};
+    if (choice.lights == LightSet::Dark) in.sun = SunDesc{120, 30, {0.0f, 0.0f, 0.0f}, 0.0f};
+    switch (choice.floor_variant) {
+        case FloorVariant::LongNames:  // 300 characters, unique by their end
+            in.name = std::string(296, 'f') + fmt::format("{:04}", floor);
+            break;
+        case FloorVariant::UnicodeNames:  // UTF-8 beyond ASCII: accents, CJK, an emoji
+            in.name = fmt::format("\u00e9tage-\u5730\u9762-\U0001f30a-{}", floor);
+            break;
+        default:
+            in.name = fmt::format("floor{}", floor);
+    }
+    if (choice.floor_variant == FloorVariant::TopFloorEmpty && floor + 1 == floors && floors > 1)
+        in.tiled = false;
     return in;
 }
 
@@ -238,6 +280,26 @@ Result<SceneDesc> write_scene(const SceneLayout& layout, const std::filesystem::
     json floors = json::array();
     for (size_t f = 0; f < layout.floors.size(); ++f) {
         const FloorInput& in = layout.floors[f];
+        const std::string floor_name = in.name.empty() ? fmt::format("floor{}", f) : in.name;
+        json lights = json::array();
+        for (const LightDesc& l : in.lights)
+            lights.push_back({{"pos", l.pos},
+                              {"radius", l.radius},
+                              {"color", l.color},
+                              {"intensity", l.intensity},
+                              {"height", l.height}});
+        json floor = {{"name", floor_name}, {"tiles", json::array()}, {"lights", lights}};
+        if (in.sun)
+            floor["sun"] = {{"azimuth", in.sun->azimuth},
+                            {"elevation", in.sun->elevation},
+                            {"color", in.sun->color},
+                            {"intensity", in.sun->intensity}};
+        if (f < layout.floor_effects.size() && !layout.floor_effects[f].empty())
+            floor["effects"] = effects_json(layout.floor_effects[f]);
+        if (!in.tiled) {
+            floors.push_back(floor);
+            continue;
+        }
         const auto image = directory / fmt::format("{}.floor{}.exr", name, f);
         ACETATE_TRY(save_image(image, in.image));
         json tile = {{"image", image.string()}, {"rect", {in.x, in.y, in.width, in.height}}};
@@ -250,21 +312,7 @@ Result<SceneDesc> write_scene(const SceneLayout& layout, const std::filesystem::
             }
             tile["masks"] = masks;
         }
-        json lights = json::array();
-        for (const LightDesc& l : in.lights)
-            lights.push_back({{"pos", l.pos},
-                              {"radius", l.radius},
-                              {"color", l.color},
-                              {"intensity", l.intensity},
-                              {"height", l.height}});
-        json floor = {{"name", fmt::format("floor{}", f)}, {"tiles", {tile}}, {"lights", lights}};
-        if (in.sun)
-            floor["sun"] = {{"azimuth", in.sun->azimuth},
-                            {"elevation", in.sun->elevation},
-                            {"color", in.sun->color},
-                            {"intensity", in.sun->intensity}};
-        if (f < layout.floor_effects.size() && !layout.floor_effects[f].empty())
-            floor["effects"] = effects_json(layout.floor_effects[f]);
+        floor["tiles"].push_back(tile);
         floors.push_back(floor);
     }
     json scene = {{"format", "acetate-scene/1"},

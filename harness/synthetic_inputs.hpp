@@ -19,6 +19,8 @@
 namespace acetate::harness {
 
 struct FloorInput {
+    std::string name;   // unique among the scene's floors
+    bool tiled = true;  // false: a floor with no tile at all (the rect and images unused)
     uint32_t x = 0, y = 0, width = 0, height = 0;  // the tile's rect on the canvas, whole pixels
     ImageRGBA image;                               // width x height
     std::map<std::string, ImageRGBA> masks;        // kind -> data mask, width x height
@@ -34,6 +36,7 @@ struct InputChoice {
     Pattern pattern = Pattern::Standard;
     LightSet lights = LightSet::Standard;
     MaskFill masks = MaskFill::Content;
+    FloorVariant floor_variant = FloorVariant::Standard;
 };
 FloorInput make_floor_input(const InputChoice& choice, uint32_t canvas_width,
                             uint32_t canvas_height, uint32_t floor, uint32_t floors, uint64_t seed,

@@ -7,6 +7,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -25,6 +27,7 @@ struct Running {
     size_t index = 0;
     pid_t pid = 0;
     Clock::time_point start;
+    double cpu_seconds = 0;  // last seen
 };
 
 ChildOutcome spawn(const ChildJob& job, pid_t& pid) {
@@ -102,21 +105,41 @@ void run_children(const std::vector<ChildJob>& jobs, unsigned parallel,
             int status = 0;
             if (waitpid(r.pid, &status, WNOHANG) == r.pid) {
                 const size_t index = r.index;
+                ChildOutcome outcome = finished(status, seconds);
+                outcome.cpu_seconds = r.cpu_seconds;
                 running.erase(running.begin() + i);
-                done(index, finished(status, seconds));
+                done(index, outcome);
                 reaped = true;
                 continue;
             }
-            if (Clock::now() - r.start > jobs[r.index].timeout) {
+            const ChildJob& job = jobs[r.index];
+            const double limit = std::chrono::duration<double>(job.timeout).count();
+            // Unreadable CPU time (no /proc): the clock alone decides.
+            bool clock_only = false;
+            if (seconds > limit) {
+                const double cpu = process_cpu_seconds(r.pid);
+                clock_only = cpu < 0;
+                if (!clock_only) r.cpu_seconds = cpu;
+            }
+            const bool used_its_share = clock_only || r.cpu_seconds > limit;
+            const bool waited_too_long = seconds > limit * std::max(1.0, job.wall_factor);
+            if (seconds > limit && (used_its_share || waited_too_long)) {
                 kill(r.pid, SIGKILL);
                 waitpid(r.pid, &status, 0);
                 ChildOutcome outcome;
                 outcome.started = true;
                 outcome.timed_out = true;
                 outcome.seconds = seconds;
+                outcome.cpu_seconds = r.cpu_seconds;
                 outcome.message =
-                    fmt::format("no result after {:.0f} s: killed",
-                                std::chrono::duration<double>(jobs[r.index].timeout).count());
+                    used_its_share ? fmt::format(
+                                         "no result after {:.0f} s of CPU time ({:.1f} s on the "
+                                         "clock): killed",
+                                         limit, seconds)
+                                   : fmt::format(
+                                         "no result after {:.0f} s on the clock ({:.1f} s of CPU "
+                                         "time: waiting, not computing): killed",
+                                         seconds, r.cpu_seconds);
                 const size_t index = r.index;
                 running.erase(running.begin() + i);
                 done(index, outcome);
@@ -127,6 +150,27 @@ void run_children(const std::vector<ChildJob>& jobs, unsigned parallel,
         }
         if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
+}
+
+double process_cpu_seconds(int pid) {
+    // /proc/<pid>/stat: "pid (comm) state ..."; comm may hold spaces and parentheses, so the
+    // fields are counted from the last ')'. utime and stime are fields 14 and 15, in clock
+    // ticks, and cover every thread of the process.
+    std::ifstream in(fmt::format("/proc/{}/stat", pid));
+    std::string text;
+    if (!std::getline(in, text)) return -1;
+    const size_t close = text.rfind(')');
+    if (close == std::string::npos) return -1;
+    std::istringstream fields(text.substr(close + 1));
+    std::string field;
+    unsigned long long utime = 0, stime = 0;
+    for (int n = 3; n <= 15 && fields >> field; ++n) {
+        if (n == 14) utime = std::strtoull(field.c_str(), nullptr, 10);
+        if (n == 15) stime = std::strtoull(field.c_str(), nullptr, 10);
+    }
+    if (!fields) return -1;
+    const long ticks = sysconf(_SC_CLK_TCK);
+    return ticks > 0 ? double(utime + stime) / double(ticks) : -1;
 }
 
 std::string tail_of_file(const std::filesystem::path& file, size_t max_bytes) {

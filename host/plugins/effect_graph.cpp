@@ -9,6 +9,8 @@
 #include <regex>
 #include <set>
 
+#include "plugins/plugin_calls.hpp"
+
 // The host's side of the opaque handle the plugin receives.
 struct AcetateGraph {
     const acetate::EffectDescriptor* descriptor = nullptr;
@@ -451,13 +453,20 @@ Result<EffectGraph> build_effect_graph(const LoadedPlugin& plugin, const Acetate
     graph.descriptor = &plugin.descriptor;
     graph.context = &context;
     graph.label = label;
-    const AcetateStatus status = plugin.api->build(&kHostApi, &graph, &floor);
+    AcetateStatus status = ACETATE_OK;
+    std::string why;
+    {
+        PluginCallGuard building("build", label);
+        status = plugin.api->build(&kHostApi, &graph, &floor);
+        if (status != ACETATE_OK && graph.error.empty()) {
+            const char* text = plugin.api->last_error();
+            why = text ? text : "(no message)";
+        }
+    }
     if (!graph.error.empty()) return make_error(ErrorCode::InvalidInput, graph.error);
     if (status != ACETATE_OK) {
-        const char* why = plugin.api->last_error();
         return make_error(ErrorCode::InvalidInput,
-                          fmt::format("{}: build failed with status {}: {}", label, status,
-                                      why ? why : "(no message)"));
+                          fmt::format("{}: build failed with status {}: {}", label, status, why));
     }
     // Nothing declared at all: the instance has nothing to do on this floor (an effect that
     // needs a mask the floor lacks), and the host skips it; "result" is then "previous".

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "plugins/plugin_calls.hpp"
 #include "plugins/sealed_library.hpp"
 
 namespace acetate {
@@ -96,9 +97,17 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::open_library(
     const std::string where = file.string();
     auto plugin = std::make_shared<LoadedPlugin>();
     plugin->file = file;
+    // Loading runs the library's static constructors, and the entry point is its code too;
+    // unloading (when the last holder lets go) runs its static destructors.
+    PluginCallGuard loading("load", where);
     try {
-        plugin->library = std::make_shared<boost::dll::shared_library>(
-            library.string(), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
+        plugin->library = std::shared_ptr<boost::dll::shared_library>(
+            new boost::dll::shared_library(library.string(), boost::dll::load_mode::rtld_now |
+                                                                 boost::dll::load_mode::rtld_local),
+            [where](boost::dll::shared_library* unloaded) {
+                PluginCallGuard unloading("unload", where);
+                delete unloaded;
+            });
     } catch (const std::exception& e) {
         // Boost.DLL's exceptions carry dlerror()'s text: missing file, missing symbol, ...
         return make_error(ErrorCode::InvalidInput,

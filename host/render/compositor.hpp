@@ -99,8 +99,12 @@ class Compositor {
     // floor effects made before the global effects run on it).
     void set_effects_enabled(bool floor_effects, bool global_effects) {
         effects_enabled_ = floor_effects;
-        global_effects_enabled_ = global_effects;
+        global_effects_run_ = global_effects ? UINT32_MAX : 0;
     }
+    // Runs only the first `count` global effects, in the scene's order, for later frames: the
+    // composite then shows what global effect `count` is given (the harness judges each global
+    // effect on its own input and output). No allocation.
+    void set_global_effects_run(uint32_t count) { global_effects_run_ = count; }
 
     // Float readbacks for tests and file output (premultiplied, linear).
     Result<ImageRGBA> read_output();
@@ -197,7 +201,7 @@ class Compositor {
     std::unique_ptr<GpuTimer> timer_;  // only with CompositorOptions::gpu_timings
     std::string timer_warning_;
     bool effects_enabled_ = true;
-    bool global_effects_enabled_ = true;
+    uint32_t global_effects_run_ = UINT32_MAX;  // how many of global_effects_ run
 };
 
 }  // namespace acetate

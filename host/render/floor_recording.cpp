@@ -224,7 +224,8 @@ void Compositor::record_composite(VkCommandBuffer cmd, const FloorStep& step, Gp
 
 void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, double time) {
     final_accumulation_ = &targets_.accumulation();
-    if (global_effects_.empty() || !global_effects_enabled_) return;
+    const size_t run = std::min<size_t>(global_effects_.size(), global_effects_run_);
+    if (run == 0) return;
     GpuImage* current = &targets_.accumulation();
     GpuImage* next = targets_.accumulation_pingpong();
     clear_image(cmd, *next);  // like the floor ping-pong: "result" starts transparent
@@ -233,7 +234,8 @@ void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, d
     report.path = "global";
     report.why = "global effects on the composite";
     report.scissor = {0, 0, int64_t(width_), int64_t(height_)};
-    for (const auto& effect : global_effects_) {
+    for (size_t e = 0; e < run; ++e) {
+        const auto& effect = global_effects_[e];
         EffectIo io;
         io.previous = current;
         io.result = next;

@@ -1,5 +1,7 @@
 // Compositor::necessary_pixels (compositor.hpp): the floor of what any renderer of this frame
 // must shade, so FrameStats::pixels_shaded can be judged against it.
+#include <algorithm>
+
 #include "render/compositor.hpp"
 
 namespace acetate {
@@ -48,11 +50,11 @@ uint64_t Compositor::necessary_pixels(uint32_t active_floor) const {
             }
         pixels += area;  // the composite over the accumulation
     }
-    if (global_effects_enabled_)
-        for (const auto& e : global_effects_)
-            for (const EffectPassRuntime& pass : e->passes)
-                pixels += !pass.target ? uint64_t(canvas.area())
-                                       : uint64_t(pass.target->width()) * pass.target->height();
+    const size_t global_run = std::min<size_t>(global_effects_.size(), global_effects_run_);
+    for (size_t i = 0; i < global_run; ++i)
+        for (const EffectPassRuntime& pass : global_effects_[i]->passes)
+            pixels += !pass.target ? uint64_t(canvas.area())
+                                   : uint64_t(pass.target->width()) * pass.target->height();
     return pixels;
 }
 

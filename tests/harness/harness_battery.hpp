@@ -136,7 +136,8 @@ void subnormal_alpha(const HarnessRun& run);
 void negative_colour(const HarnessRun& run);
 void build_leak(const HarnessRun& run);
 void result_partly_unwritten(const HarnessRun& run);
-void undefined_only(const HarnessRun& run);
+void undefined_everywhere(const HarnessRun& run);
+void undefined_away_from_defaults(const HarnessRun& run);
 void reach_checked(const HarnessRun& run);
 void reach_cut_off(const HarnessRun& run);
 

@@ -233,10 +233,31 @@ void result_partly_unwritten(const HarnessRun& run) {
 
 // hidden_nan, inverted_smoothstep: finite as compiled, NaN with the checked built-ins, in both
 // undefined cases (and no other case runs that check).
-void undefined_only(const HarnessRun& run) {
+// hidden_nan, inverted_smoothstep: undefined wherever they run, so in every contract case
+// (each renders once more with checked built-ins); the failure says what the pass gave as
+// compiled.
+void undefined_everywhere(const HarnessRun& run) {
     fails_only_where(
-        run, "undefined-results", {"undefined/standard", "undefined/hdr"},
+        run, "undefined-results", {"contract/standard", "inputs/hdr"},
         [](const json&, const json&) { return true; }, "; as compiled it gave (");
+}
+
+// undefined_at_max: undefined only where amount is above 0.5, which the defaults never are.
+void undefined_away_from_defaults(const HarnessRun& run) {
+    fails_only_where(
+        run, "undefined-results", {"params/max", "params/sweep-amount"},
+        [](const json&, const json& spec) {
+            auto above = [](const json& params) { return params.value("amount", 0.0) > 0.5; };
+            bool any = above(spec.value("params", json::object()));
+            for (const json& point : spec.value("sweep", json::array())) any |= above(point);
+            return any;
+        },
+        "; as compiled it gave (");
+    const json* standard = run.find_case("contract/standard");
+    ASSERT_NE(standard, nullptr);
+    const json* check = HarnessRun::find_check(*standard, "undefined-results");
+    ASSERT_NE(check, nullptr) << "contract/standard did not check undefined results";
+    EXPECT_EQ((*check)["verdict"], "PASS") << check->dump(2);
 }
 
 // declared_reach: the reach check runs (the plugin declares a reach) and passes everywhere.

@@ -391,6 +391,52 @@ TEST_F(HarnessStages, CommittedSignOffsTakeAFreshRegistryToValidated) {
     EXPECT_EQ(e["integrated"]["binary_sha256"], info["binary_sha256"]);
 }
 
+// A coverage-preserving global effect reaches VALIDATED with bloom, a coverage-expanding global
+// effect, INTEGRATED beside it: the integration stack runs bloom first and judges the effect
+// under test on its own input and output (the composite bloom left, whose alpha bloom grew),
+// not from the composite before every global effect to after all of them.
+TEST_F(HarnessStages, APreservingGlobalEffectIsValidatedAfterBloom) {
+    for (const fs::path& built : {fs::path(ACETATE_PLUGIN_DIR) / "bloom.so",
+                                  fs::path(ACETATE_HARNESS_PLUGIN_DIR) / "global_grade.so"}) {
+        ASSERT_TRUE(fs::is_regular_file(built)) << built;
+        fs::copy_file(built, plugins_ / built.filename());
+    }
+    const std::string paths = "--no-signoffs --plugin-path " + shell_quote(plugins_.string());
+    const fs::path bloom = plugins_ / "bloom.so", grade = plugins_ / "global_grade.so";
+    for (const fs::path& plugin : {bloom, grade}) {
+        const CommandResult reviewed = review(plugin, registry_);
+        EXPECT_EQ(reviewed.code, 0) << reviewed.describe();
+    }
+    CommandResult run = validate(bloom, registry_, dir_ / "report-bloom", paths);
+    ASSERT_EQ(run.code, 0) << run.describe();
+    ASSERT_EQ(stage(registry_, "acetate.bloom"), "INTEGRATED") << run.describe();
+
+    run = validate(grade, registry_, dir_ / "report-grade", paths);
+    EXPECT_EQ(run.code, 0) << run.describe();
+    EXPECT_TRUE(contains(run.out, "integration: with 1 other integrated plugin")) << run.out;
+    EXPECT_EQ(stage(registry_, "test.harness.global_grade"), "INTEGRATED");
+    const json r = report(dir_ / "report-grade");
+    bool judged = false;
+    for (const json& c : r["cases"]) {
+        if (c["id"] != "integration/stack") continue;
+        for (const json& check : c["checks"])
+            if (check["check"] == "coverage") {
+                judged = true;
+                EXPECT_EQ(check["verdict"], "PASS") << check.dump(2);
+            }
+    }
+    EXPECT_TRUE(judged) << "no coverage check in integration/stack";
+
+    run = harness("waive " + shell_quote(grade.string()) +
+                  " strictness --reason 'a test at strictness 1' --until 2099-12-31 --by "
+                  "pat@example.org");
+    EXPECT_EQ(run.code, 0) << run.describe();
+    run = harness("promote " + shell_quote(grade.string()) +
+                  " --by pat@example.org --notes 'evidence read'");
+    EXPECT_EQ(run.code, 0) << run.describe();
+    EXPECT_EQ(stage(registry_, "test.harness.global_grade"), "VALIDATED");
+}
+
 // Two validates at once on one registry, each up to ALPHA_TESTED only: the registry's lock
 // makes them take turns, so both records survive, and neither goes past ALPHA_TESTED.
 TEST_F(HarnessStages, AlphaTestedOnlyAndTwoRunsShareOneRegistry) {

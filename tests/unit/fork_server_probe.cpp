@@ -5,6 +5,7 @@
 //   exit N       calls exit(N), as a plugin might
 //   raise N      raises signal N
 //   sleep S      sleeps S seconds, then returns 0
+//   spin S       computes for S seconds of CPU time, then returns 0
 //   fds          prints the child's open descriptors and what stdin is, returns 0
 //   mark FILE    writes this process's pid into FILE, returns 0
 // It links the host library like acetate-harness, so the server holds the same libraries (and
@@ -16,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -42,6 +44,14 @@ int run_command(int argc, char** argv) {
     }
     if (what == "sleep") {
         std::this_thread::sleep_for(std::chrono::duration<double>(std::atof(arg.c_str())));
+        return 0;
+    }
+    if (what == "spin") {
+        const double seconds = std::atof(arg.c_str());
+        volatile double sink = 0;
+        for (timespec t{}; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) == 0 &&
+                           double(t.tv_sec) + double(t.tv_nsec) * 1e-9 < seconds;)
+            for (int i = 0; i < 100000; ++i) sink = sink + 1.0;
         return 0;
     }
     if (what == "fds") {

@@ -93,6 +93,30 @@ TEST(ForkServer, AChildPastItsLimitIsKilled) {
     EXPECT_LT(seconds, 10.0) << "the sleeping child was waited for, not killed";
 }
 
+// The limit counts CPU time (a loaded machine slows a correct child without failing it): a
+// child that computes is killed once it has used the limit; one that waits past the limit on
+// the clock without computing finishes, and one that waits far longer is killed at
+// wall_factor times the limit. (Spawned children are watched by the same loop.)
+TEST(ChildLimits, TheLimitCountsCpuTimeAndTheClockIsABackstop) {
+    auto server = start_server();
+    ASSERT_TRUE(server);
+    const auto ran =
+        run_probe(test::scratch_dir(), {{"spin", "60"}, {"sleep", "2.5"}, {"sleep", "60"}},
+                  server.get(), std::chrono::milliseconds(1000));
+    const ChildOutcome& spin = ran[0].outcome;
+    EXPECT_TRUE(spin.timed_out) << spin.message;
+    EXPECT_GE(spin.cpu_seconds, 1.0) << spin.message;
+    EXPECT_TRUE(contains(spin.message, "no result after 1 s of CPU time")) << spin.message;
+    // Past the 1 s limit on the clock, but it used almost no CPU: not killed.
+    EXPECT_FALSE(ran[1].outcome.timed_out) << ran[1].outcome.message;
+    EXPECT_EQ(ran[1].outcome.exit_code, 0) << ran[1].outcome.message;
+    const ChildOutcome& waits = ran[2].outcome;
+    EXPECT_TRUE(waits.timed_out) << waits.message;
+    EXPECT_GE(waits.seconds, 4.0) << "killed before wall_factor (4) times the limit";
+    EXPECT_LT(waits.seconds, 8.0) << waits.message;
+    EXPECT_TRUE(contains(waits.message, "waiting, not computing")) << waits.message;
+}
+
 TEST(ForkServer, ChildrenAreFreshProcessesWithOnlyTheirLog) {
     auto server = start_server();
     ASSERT_TRUE(server);

@@ -2,8 +2,8 @@
 // slip for log(1 + a): the logarithm of a negative number is NaN, and clamp() of a NaN is
 // undefined. llvmpipe's clamp returns a finite value, so every image looks right here; another
 // driver may give NaN. Colour is scaled by 0.9 to 1 and alpha is kept. Caught by: the
-// UNDEFINED-RESULTS check only (undefined/standard and undefined/hdr, whose checked clamp
-// returns NaN for a NaN operand).
+// UNDEFINED-RESULTS check only (in every contract case,
+// rendered once more with a checked clamp that returns NaN for a NaN operand).
 #include <acetate/effect.hpp>
 
 class HiddenNan final : public acetate::sdk::Effect {

@@ -2,8 +2,8 @@
 // smoothstep(1.0, 0.0, a), a falling ramp written with the edges swapped; GLSL leaves
 // smoothstep undefined for edge0 >= edge1. llvmpipe computes the falling ramp the author
 // expected, so every image looks right here; another driver may not. Colour is scaled by 0.8
-// to 1 and alpha is kept. Caught by: the UNDEFINED-RESULTS check only (undefined/standard and
-// undefined/hdr, whose checked smoothstep returns NaN for inverted edges).
+// to 1 and alpha is kept. Caught by: the UNDEFINED-RESULTS check only (in every contract case,
+// rendered once more with a checked smoothstep that returns NaN for inverted edges).
 #include <acetate/effect.hpp>
 
 class InvertedSmoothstep final : public acetate::sdk::Effect {
