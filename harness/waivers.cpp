@@ -4,26 +4,18 @@
 
 #include <algorithm>
 
+#include "checks.hpp"
+
 namespace acetate::harness {
 
 const std::vector<std::string>& waivable_checks() {
-    static const std::vector<std::string> checks = {"premultiplied",
-                                                    "coverage",
-                                                    "alpha-leak",
-                                                    "finite",
-                                                    "non-negative",
-                                                    "reach",
-                                                    "undefined-results",
-                                                    "vulkan-validation",
-                                                    "determinism",
-                                                    "state-isolation",
-                                                    "memory",
-                                                    "floor-isolation",
-                                                    "disconnected-parameters",
-                                                    "cross-floor",
-                                                    "reference",
-                                                    "golden",
-                                                    kStrictnessWaiver};
+    static const std::vector<std::string> checks = [] {
+        std::vector<std::string> out;
+        for (const CheckInfo& c : registered_checks())
+            if (c.waivable) out.emplace_back(c.name);
+        out.emplace_back(kStrictnessWaiver);
+        return out;
+    }();
     return checks;
 }
 

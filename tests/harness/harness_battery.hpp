@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "checks.hpp"
 #include "registry.hpp"
 #include "report.hpp"
 #include "test_files.hpp"

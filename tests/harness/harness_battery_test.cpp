@@ -411,6 +411,13 @@ TEST_P(HarnessBattery, FlagsExactlyTheBrokenRule) {
     EXPECT_EQ(run.report["seed"], 1);
     ASSERT_FALSE(run.report["cases"].empty());
 
+    // Every check a case reports is registered (harness/checks.hpp), so the waivers and the
+    // documents know it.
+    for (const json& c : run.report["cases"])
+        for (const json& check : c["checks"])
+            EXPECT_NE(harness::find_registered_check(check["check"].get<std::string>()), nullptr)
+                << "unregistered check " << check["check"] << " in " << c["id"];
+
     // Each check's worst verdict over the cases; the cases' own verdicts.
     bool anything_failed = false;
     std::vector<std::string> process_failures;

@@ -1,0 +1,64 @@
+// The checks are registered once (harness/checks.hpp): the tables of checks in docs/harness.md
+// and docs/contract.md are exactly what the registry makes, between their "checks" markers, and
+// the waivers accept exactly the waivable checks. A check added, renamed or reworded in the
+// registry and not in the documents (or the other way round) fails here; the message holds
+// the table to paste.
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "checks.hpp"
+#include "test_files.hpp"
+#include "waivers.hpp"
+
+namespace acetate::harness {
+namespace {
+
+constexpr const char* kBegin =
+    "<!-- checks: made from harness/checks.cpp; "
+    "tests/unit/check_registry_test.cpp keeps it equal -->\n";
+constexpr const char* kEnd = "<!-- end of checks -->";
+
+// The text between the markers; "(no markers)" when the file has none.
+std::string between_markers(const std::string& text) {
+    const size_t begin = text.find(kBegin);
+    if (begin == std::string::npos) return "(no markers)";
+    const size_t from = begin + std::string(kBegin).size();
+    const size_t end = text.find(kEnd, from);
+    return end == std::string::npos ? "(no end marker)" : text.substr(from, end - from);
+}
+
+TEST(CheckRegistry, TheDocumentsTablesAreTheRegistrys) {
+    const std::string harness = test::read_file(ACETATE_SOURCE_DIR "/docs/harness.md");
+    EXPECT_EQ(between_markers(harness), harness_checks_table())
+        << "docs/harness.md's table of checks differs from harness/checks.cpp; between the "
+           "markers it should read:\n"
+        << harness_checks_table();
+    const std::string contract = test::read_file(ACETATE_SOURCE_DIR "/docs/contract.md");
+    EXPECT_EQ(between_markers(contract), contract_checks_table())
+        << "docs/contract.md's table of checks differs from harness/checks.cpp; between the "
+           "markers it should read:\n"
+        << contract_checks_table();
+}
+
+TEST(CheckRegistry, NamesAreUniqueAndWaiversAcceptExactlyTheWaivableOnes) {
+    std::set<std::string> names, waivable;
+    for (const CheckInfo& c : registered_checks()) {
+        EXPECT_TRUE(names.insert(std::string(c.name)).second) << c.name << " twice";
+        EXPECT_FALSE(c.rule.empty() || c.cases.empty() || c.fails.empty()) << c.name;
+        if (c.waivable) waivable.insert(std::string(c.name));
+        EXPECT_EQ(find_registered_check(c.name), &c);
+    }
+    EXPECT_EQ(find_registered_check("no-such-check"), nullptr);
+    waivable.insert(kStrictnessWaiver);
+    const auto& accepted = waivable_checks();
+    EXPECT_EQ(std::set<std::string>(accepted.begin(), accepted.end()), waivable);
+    // A crash, a hang, a refused load and a flaky verdict are never waived.
+    for (const char* never : {"process", "load", "repeat"})
+        EXPECT_FALSE(find_registered_check(never)->waivable) << never;
+}
+
+}  // namespace
+}  // namespace acetate::harness
