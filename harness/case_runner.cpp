@@ -50,10 +50,11 @@ Result<CaseResult> run_case(const CaseContext& c) {
     }
     if (!ran) return ran.error();
     // Close Vulkan first: messages at teardown (objects left alive) count too.
+    const bool validation_layer_on = session->context->validation_enabled();
     session->renderer.reset();
     session->context.reset();
     writer.add(hygiene.check());
-    return writer.finish();
+    return writer.finish(validation_layer_on);
 }
 
 }  // namespace acetate::harness

@@ -104,8 +104,11 @@ void huge_radius(const HarnessRun& run) {
 }
 
 void full_mask(const HarnessRun& run) {
-    fails_only_where(run, "finite", {"masks/full"},
-                     [](const json& in, const json&) { return input_is(in, "masks", "full"); });
+    fails_only_where(run, "finite", {"masks/full", "masks/above-one"},
+                     [](const json& in, const json&) {
+                         return input_is(in, "masks", "full") ||
+                                input_is(in, "masks", "above-one") || input_is(in, "masks", "thin");
+                     });
 }
 
 void absent_mask(const HarnessRun& run) {
@@ -234,12 +237,22 @@ void result_partly_unwritten(const HarnessRun& run) {
 // hidden_nan, inverted_smoothstep: finite as compiled, NaN with the checked built-ins, in both
 // undefined cases (and no other case runs that check).
 // hidden_nan, inverted_smoothstep: undefined wherever they run, so in every contract case
-// (each renders once more with checked built-ins); the failure says what the pass gave as
-// compiled.
+// (each renders once more with checked built-ins) that has coverage; each failure says what
+// the pass gave as compiled. The cases of other kinds do not check undefined results.
 void undefined_everywhere(const HarnessRun& run) {
-    fails_only_where(
-        run, "undefined-results", {"contract/standard", "inputs/hdr"},
-        [](const json&, const json&) { return true; }, "; as compiled it gave (");
+    for (const char* id : {"contract/standard", "inputs/hdr", "sizes/odd", "lights/dark"}) {
+        const json* c = run.find_case(id);
+        ASSERT_NE(c, nullptr) << id;
+        const json* check = HarnessRun::find_check(*c, "undefined-results");
+        ASSERT_NE(check, nullptr) << id;
+        EXPECT_EQ((*check)["verdict"], "FAIL") << id << ": " << check->dump(2);
+    }
+    for (const json* c : run.check_cases.at("undefined-results")) {
+        const json* check = HarnessRun::find_check(*c, "undefined-results");
+        if ((*check)["verdict"] != "FAIL") continue;
+        EXPECT_TRUE(contains((*check)["message"].get<std::string>(), "; as compiled it gave ("))
+            << (*c)["id"] << ": " << (*check)["message"];
+    }
 }
 
 // undefined_at_max: undefined only where amount is above 0.5, which the defaults never are.

@@ -311,6 +311,19 @@ void periodic_azimuth(const HarnessRun& run) {
     EXPECT_TRUE(contains(message, "azimuth only between interior values")) << message;
 }
 
+// watched_only: its NaN shows in the everyday case, so the switch was gone from what it saw.
+void watched_only(const HarnessRun& run) {
+    const json* c = run.find_case("contract/standard");
+    ASSERT_NE(c, nullptr);
+    const json* check = HarnessRun::find_check(*c, "finite");
+    ASSERT_NE(check, nullptr);
+    EXPECT_EQ((*check)["verdict"], "FAIL") << check->dump(2);
+    const json* validation = HarnessRun::find_check(*c, "vulkan-validation");
+    ASSERT_NE(validation, nullptr);
+    EXPECT_EQ((*validation)["verdict"], "PASS")
+        << "the layer was still on: " << validation->dump(2);
+}
+
 // undeclared_expansion: alpha grew although the plugin declares coverage-preserving.
 void undeclared_expansion(const HarnessRun& run) {
     size_t examples = 0;
@@ -344,6 +357,9 @@ const std::vector<Expectation> kPlugins = {
     // isolation is still judged.
     {"floor_state_leak", {"determinism", "state-isolation"}, {}, false, floor_state_leak},
     {"disconnected_param", {"disconnected-parameters"}, {}, false, disconnected_param},
+    // Correct only with the harness's switch in its environment, which the case's child takes
+    // out once the validation layer is on: caught where a user would see it.
+    {"watched_only", {"finite"}, {}, false, watched_only},
     // A control for the check above: a periodic parameter (equal ends) is connected.
     {"periodic_azimuth", {}, {}, false, periodic_azimuth},
     {"undeclared_expansion", {"coverage"}, {}, false, undeclared_expansion},

@@ -1,9 +1,9 @@
 // BROKEN on purpose: a mask kind the floor does not have. build() hands the shader its
 // shoreline settings (the mask's scale and the strength) only when the floor has the water
 // mask; on a floor without it the shader divides the (transparent) mask by the host's default
-// floor data, zeros: 0 / 0 = NaN over the whole floor. With the mask present, empty or full,
-// colour is scaled by 0.7 to 1 and alpha is kept. Caught by: FINITE in masks/absent only, and in
-// a combined/* point drawn without masks.
+// floor data, zeros: 0 / 0 = NaN over the whole floor. With the mask present, empty, full or
+// above 1 (taken as 1), colour is scaled by 0.7 to 1 and alpha is kept. Caught by: FINITE in
+// masks/absent only, and in a combined/* point drawn without masks.
 #include <acetate/effect.hpp>
 
 class AbsentMask final : public acetate::sdk::Effect {
@@ -27,7 +27,7 @@ class AbsentMask final : public acetate::sdk::Effect {
 void main() {
     vec4 prev = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);
     float m = texelFetch(mask_water, ivec2(gl_FragCoord.xy), 0).r;
-    float wet = m / floor_data[0];  // 0 / 0 without the settings
+    float wet = min(m, 1.0) / floor_data[0];  // 0 / 0 without the settings
     out_color = vec4(prev.rgb * (1.0 - floor_data[1] * wet), prev.a);
 }
 )",

@@ -6,33 +6,9 @@
 // correct, and so is every build without that folder.
 // Caught by: `validate --repeat N` (N >= 2) as FLAKY: exactly one run fails (the COVERAGE
 // check), the same case's other runs pass. A single run reads an ordinary FAIL.
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <acetate/effect.hpp>
-#include <cerrno>
-#include <cstdlib>
-#include <string>
 
-namespace {
-
-// The number of the ticket this build took; 0 without the folder.
-int take_ticket() {
-    const char* folder = std::getenv("ACETATE_TEST_FLAKY_DIR");
-    if (!folder) return 0;
-    for (int n = 1; n < 100000; ++n) {
-        const std::string file = std::string(folder) + "/ticket-" + std::to_string(n);
-        const int fd = ::open(file.c_str(), O_CREAT | O_EXCL | O_WRONLY, 0644);
-        if (fd >= 0) {
-            ::close(fd);
-            return n;
-        }
-        if (errno != EEXIST) return 0;
-    }
-    return 0;
-}
-
-}  // namespace
+#include "ticket.hpp"
 
 class Flaky final : public acetate::sdk::Effect {
   public:

@@ -3,7 +3,9 @@
 // depth is infinite and that is Inf / Inf = NaN. The mask is read through a 3x3 tent blur (four
 // bilinear taps at texel corners), so a varying mask never averages to exactly 1: only a mask
 // that is 1 over a whole 3x3 block does. Otherwise colour is scaled by 0.7 to 1 and alpha is
-// kept. Caught by: FINITE in masks/full only, and in a combined/* point drawn with full masks.
+// kept. Caught by: FINITE in masks/full and masks/above-one (above 1 the logarithm's argument is
+// negative), and in a combined/* point drawn with masks full, above 1, or in one-pixel lines
+// (where lines meet at the tile's corner, a small canvas has a whole 3x3 block at 1).
 #include <acetate/effect.hpp>
 
 class FullMask final : public acetate::sdk::Effect {

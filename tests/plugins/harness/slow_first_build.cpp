@@ -5,32 +5,12 @@
 // colour and keeps alpha.
 // Must pass: a TIMEOUT is run once more in a fresh process before it counts, and that run
 // (ticket 2) finishes (tests/harness/harness_flaky_test.cpp).
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <acetate/effect.hpp>
-#include <cerrno>
-#include <cstdlib>
 #include <ctime>
-#include <string>
+
+#include "ticket.hpp"
 
 namespace {
-
-// The number of the ticket this build took; 0 without the folder.
-int take_ticket() {
-    const char* folder = std::getenv("ACETATE_TEST_FLAKY_DIR");
-    if (!folder) return 0;
-    for (int n = 1; n < 100000; ++n) {
-        const std::string file = std::string(folder) + "/ticket-" + std::to_string(n);
-        const int fd = ::open(file.c_str(), O_CREAT | O_EXCL | O_WRONLY, 0644);
-        if (fd >= 0) {
-            ::close(fd);
-            return n;
-        }
-        if (errno != EEXIST) return 0;
-    }
-    return 0;
-}
 
 void compute_for(double cpu_seconds) {
     volatile double sink = 0;

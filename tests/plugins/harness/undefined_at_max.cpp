@@ -1,7 +1,7 @@
 // BROKEN on purpose: a result GLSL leaves undefined, but only away from the defaults. A sheen
-// is clamp(log(0.5 - amount), 0, 1): finite for `amount` below 0.5 (the default is 0.2), the
+// is clamp(log(0.5 - amount) + 2, 0, 1): finite for `amount` below 0.5 (the default is 0.2), the
 // logarithm of a negative number (NaN) above it, and clamp() of a NaN is undefined. llvmpipe's
-// clamp returns a finite value, so every image looks right here. Colour is scaled by 0.9 to 1
+// clamp returns a finite value, so every image looks right here. Colour is scaled by 0.85 to 1
 // and alpha is kept.
 // Caught by: the UNDEFINED-RESULTS check only, and only in cases that set amount above 0.5
 // (params/max, the sweep of amount, combined points): the checked built-ins run in every
@@ -24,8 +24,8 @@ class UndefinedAtMax final : public acetate::sdk::Effect {
                     .glsl = R"(
 void main() {
     vec4 prev = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);
-    float sheen = clamp(log(0.5 - param_amount), 0.0, 1.0);
-    out_color = vec4(prev.rgb * (0.9 + 0.1 * sheen * prev.a), prev.a);
+    float sheen = clamp(log(0.5 - param_amount) + 2.0, 0.0, 1.0);
+    out_color = vec4(prev.rgb * (0.85 + 0.1 * sheen + 0.05 * param_amount), prev.a);
 }
 )",
                     .inputs = {"previous"}});
