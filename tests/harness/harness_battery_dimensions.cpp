@@ -273,6 +273,56 @@ void undefined_away_from_defaults(const HarnessRun& run) {
     EXPECT_EQ((*check)["verdict"], "PASS") << check->dump(2);
 }
 
+// The edges of the format, one plugin each: each fails in its edge's own case only, or in a
+// combined/* point that drew the same value.
+void light_on_floor(const HarnessRun& run) {
+    fails_only_where(run, "finite", {"lights/on-the-floor"}, [](const json& in, const json&) {
+        return input_is(in, "lights", "on-the-floor");
+    });
+}
+void sun_overhead(const HarnessRun& run) {
+    fails_only_where(run, "finite", {"lights/zenith-sun"}, [](const json& in, const json&) {
+        return input_is(in, "lights", "zenith-sun");
+    });
+}
+void dark_light(const HarnessRun& run) {
+    fails_only_where(run, "finite", {"lights/dark"},
+                     [](const json& in, const json&) { return input_is(in, "lights", "dark"); });
+}
+void mask_over_one(const HarnessRun& run) {
+    fails_only_where(run, "finite", {"masks/above-one"}, [](const json& in, const json&) {
+        return input_is(in, "masks", "above-one");
+    });
+}
+void ascii_floor_names(const HarnessRun& run) {
+    fails_only_where(run, "non-negative", {"floors/unicode-names"},
+                     [](const json& in, const json&) {
+                         return input_is(in, "floor names and tiles", "unicode-names");
+                     });
+}
+// empty_floor_bounds: SIGFPE in build() wherever the plugin is built for a floor without tiles.
+void empty_floor_bounds(const HarnessRun& run) {
+    size_t crashed = 0;
+    for (const json& c : run.report["cases"]) {
+        if (c["verdict"] != "CRASH") continue;
+        ++crashed;
+        EXPECT_TRUE(contains(c["message"].get<std::string>(), "SIGFPE")) << c.dump(2);
+        EXPECT_TRUE(input_is(c["inputs"], "floor names and tiles", "top-floor-empty"))
+            << c["id"] << " crashed without a floor without tiles: " << c["inputs"].dump();
+    }
+    const json* own = run.find_case("floors/top-floor-empty");
+    ASSERT_NE(own, nullptr);
+    EXPECT_EQ((*own)["verdict"], "CRASH") << own->dump(2);
+    EXPECT_GE(crashed, 1u);
+}
+
+// fraction_below_one (a control): the case whose fraction would round up to 1 passes.
+void fraction_below_one(const HarnessRun& run) {
+    const json* c = run.find_case("time/fraction-rounds-up");
+    ASSERT_NE(c, nullptr);
+    EXPECT_EQ((*c)["verdict"], "PASS") << c->dump(2);
+}
+
 // declared_reach: the reach check runs (the plugin declares a reach) and passes everywhere.
 void reach_checked(const HarnessRun& run) {
     ASSERT_TRUE(run.check_cases.count("reach")) << "the reach check never ran";

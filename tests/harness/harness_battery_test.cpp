@@ -382,6 +382,15 @@ const std::vector<Expectation> kPlugins = {
     // in both of its frames, so only the comparison with a fresh process shows it).
     {"other_canvas_load", {"finite", "determinism"}, {}, false, other_canvas_load},
     {"subnormal_alpha", {"finite"}, {}, false, subnormal_alpha},
+    // One plugin per edge of the scene format the input model tries (harness/input_fields.cpp).
+    {"light_on_floor", {"finite"}, {}, false, light_on_floor},
+    {"sun_overhead", {"finite"}, {}, false, sun_overhead},
+    {"dark_light", {"finite"}, {}, false, dark_light},
+    {"mask_over_one", {"finite"}, {}, false, mask_over_one},
+    {"ascii_floor_names", {"non-negative"}, {}, false, ascii_floor_names},
+    {"empty_floor_bounds", {}, {}, true, empty_floor_bounds},
+    // A control: relies on the host keeping acetate_time_fraction below 1.
+    {"fraction_below_one", {}, {}, false, fraction_below_one},
     // One plugin per rule the harness gained.
     {"negative_colour", {"non-negative"}, {}, false, negative_colour},
     {"build_leak", {"memory"}, {}, false, build_leak},

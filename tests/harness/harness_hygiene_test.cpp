@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -80,7 +81,10 @@ TEST_P(ProcessHygiene, APluginCallThatChangesTheProcessFailsAndIsNamed) {
         seen = true;
         if (rule.name.empty()) {
             EXPECT_EQ(check["verdict"], "PASS") << message;
-            EXPECT_TRUE(contains(message, "3 plugin calls")) << message;  // load, build, unload
+            // At least a load, a build and an unload were watched (a host may build more).
+            EXPECT_GE(std::atoi(message.c_str()), 3) << message;
+            EXPECT_TRUE(contains(message, " plugin calls (loads, builds, unloads) each left"))
+                << message;
         } else {
             EXPECT_EQ(check["verdict"], "FAIL") << message;
             EXPECT_TRUE(contains(message, rule.message)) << message;
