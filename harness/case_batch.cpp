@@ -168,6 +168,7 @@ std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpe
                         result.message.empty() ? "" : "  ", result.message.c_str());
         std::fflush(stdout);
         results[i] = std::move(result);
+        if (o.on_result) o.on_result(i, results[i]);
     };
     run_children(
         jobs, o.jobs, [&](size_t i, const ChildOutcome& outcome) { finish(i, outcome, false); },

@@ -28,6 +28,10 @@ struct CaseBatch {
     // The command line that re-runs one case (CaseResult::reproduce); none when unset.
     std::function<std::string(const CaseSpec&)> reproduce;
     bool quiet = false;  // no progress line per case
+    // Called with the case's position in the batch and its final result (after a retry), as
+    // each case finishes: a shard writes it at once (shard.hpp), so a shard killed later has
+    // lost only the cases it was running.
+    std::function<void(size_t, const CaseResult&)> on_result;
     // Fork each case's child from a server started once (core/fork_server.hpp); false when the
     // environment says ACETATE_FORK_SERVER=0.
     bool fork_server = fork_server_wanted();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <random>
+#include <utility>
 
 namespace acetate::harness {
 
@@ -30,11 +31,19 @@ std::vector<CaseResult> run_repeated(CaseBatch& batch, const std::vector<CaseSpe
         folders.push_back(case_folder(spec.id) +
                           (slot.run == 0 ? "" : fmt::format("-run{}", slot.run + 1)));
     }
-    std::vector<CaseResult> results = run_case_batch(batch, specs, folders);
-
+    // Each run's result lands in its case's slot as it finishes; a case whose runs are all in
+    // is merged and handed on at once (the batch's on_result sees cases, not runs).
     std::vector<std::vector<CaseResult>> by_case(cases.size(), std::vector<CaseResult>(runs));
-    for (size_t j = 0; j < order.size(); ++j)
-        by_case[order[j].case_index][order[j].run] = std::move(results[j]);
+    std::vector<unsigned> finished(cases.size(), 0);
+    auto on_case = std::exchange(batch.on_result, {});
+    batch.on_result = [&](size_t j, const CaseResult& result) {
+        const Slot& slot = order[j];
+        by_case[slot.case_index][slot.run] = result;
+        if (++finished[slot.case_index] == runs && on_case)
+            on_case(slot.case_index, merge_runs(by_case[slot.case_index]));
+    };
+    run_case_batch(batch, specs, folders);
+    batch.on_result = std::move(on_case);
     std::vector<CaseResult> merged;
     for (std::vector<CaseResult>& case_runs : by_case)
         merged.push_back(merge_runs(std::move(case_runs)));

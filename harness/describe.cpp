@@ -4,6 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
 #include <sstream>
 
 #include "core/atomic_file.hpp"
@@ -102,7 +105,6 @@ Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugi
     if (ec)
         return make_error(ErrorCode::Io, fmt::format("{}: cannot create: {}",
                                                      work_directory.string(), ec.message()));
-    const fs::path out = work_directory / "plugin.json";
     // The folder must take a file before the child runs: a full disk or a read-only folder is
     // the machine's fault, and said so here, rather than read later as the plugin ending the
     // describe child without its description.
@@ -110,18 +112,33 @@ Result<PluginInfo> describe_in_child(const fs::path& self, const fs::path& plugi
     if (auto writable = write_file_atomically(probe, std::string(4096, '\n')); !writable)
         return writable.error();
     fs::remove(probe, ec);
-    fs::remove(out, ec);
+    // The child writes into a folder of its own, made here, so that nothing another process
+    // reads is ever removed or half written (shards sharing one folder, docs/cluster.md).
+    std::string own = (work_directory / ".describe-XXXXXX").string();
+    if (!mkdtemp(own.data()))
+        return make_error(ErrorCode::Io,
+                          fmt::format("{}: cannot create a folder: {}", own, std::strerror(errno)));
+    struct RemovedAtEnd {
+        fs::path folder;
+        ~RemovedAtEnd() {
+            std::error_code ignored;
+            fs::remove_all(folder, ignored);
+        }
+    } removed{own};
+    const fs::path out = fs::path(own) / "plugin.json";
     ChildJob job;
     job.argv = {self.string(), "describe", plugin.string(), "--out", out.string()};
-    job.log = work_directory / "describe.log";
+    job.log = fs::path(own) / "describe.log";
     job.timeout = std::chrono::milliseconds(int64_t(timeout_seconds * 1000));
     ChildOutcome outcome;
     run_children({job}, 1, [&](size_t, const ChildOutcome& o) { outcome = o; });
+    fs::rename(job.log, work_directory / "describe.log", ec);  // kept for whoever debugs it
     if (!outcome.started) return make_error(ErrorCode::Io, outcome.message);
     const bool described =
         !outcome.timed_out && !outcome.signal && outcome.exit_code == 0 && fs::exists(out, ec);
     if (!described) {
-        const std::string why = describe_failure(outcome, tail_of_file(job.log, 4000));
+        const std::string why =
+            describe_failure(outcome, tail_of_file(work_directory / "describe.log", 4000));
         // The host's own refusal names the plugin file already: name it once, not nested.
         std::string reason = why;
         if (reason.rfind(plugin.string() + ": ", 0) == 0)

@@ -57,7 +57,8 @@ Result<ShardResult> read_one(const fs::path& file, const SignatureVerifier& runn
         using namespace json_fields;
         expect_object(j, "",
                       {"format", "runner", "plugin", "strictness", "seed", "harness_version",
-                       "stage", "spec", "result"});
+                       "stage", "spec", "result"},
+                      {"shard"});
         if (text(j, "", "format") != kShardFormat)
             fail("format", fmt::format("is not \"{}\"", kShardFormat));
         return non_empty_text(j.at("runner"), "runner");
@@ -89,6 +90,14 @@ Result<ShardResult> read_one(const fs::path& file, const SignatureVerifier& runn
             (*stage != ValidationStage::AlphaTested && *stage != ValidationStage::Integrated))
             fail("stage", "must be ALPHA_TESTED or INTEGRATED");
         r.stage = *stage;
+        if (const json* shard = optional(j, "shard")) {
+            const std::string typed = text(*shard, "shard");
+            auto selection = parse_shard_selection(typed, "shard");
+            if (!selection)
+                fail("shard",
+                     fmt::format("\"{}\" is not K/N with 0 <= K < N <= {}", typed, kMaxShards));
+            r.shard = selection.value();
+        }
         r.spec = read_case_spec(j.at("spec"), "spec");
         r.result = read_case_result(j.at("result"), "result");
         if (r.result.id != r.spec.id)
@@ -99,34 +108,30 @@ Result<ShardResult> read_one(const fs::path& file, const SignatureVerifier& runn
 
 }  // namespace
 
-Result<void> write_shard_results(const fs::path& out, const PluginInfo& plugin, int strictness,
-                                 uint64_t seed, ValidationStage stage,
-                                 const std::vector<CaseSpec>& cases,
-                                 const std::vector<CaseResult>& results, const Runner& runner) {
-    const fs::path folder = out / "results";
+Result<void> write_shard_result(const ShardOutput& out, ValidationStage stage, const CaseSpec& spec,
+                                const CaseResult& result) {
+    const fs::path folder = out.folder / "results";
     std::error_code ec;
     fs::create_directories(folder, ec);
     if (ec)
         return make_error(ErrorCode::Io,
                           fmt::format("{}: cannot create: {}", folder.string(), ec.message()));
-    for (size_t i = 0; i < cases.size() && i < results.size(); ++i) {
-        const json j = {{"format", kShardFormat},
-                        {"runner", runner.name},
-                        {"harness_version", kHarnessVersion},
-                        {"plugin", to_json(plugin)},
-                        {"strictness", strictness},
-                        {"seed", seed},
-                        {"stage", to_string(stage)},
-                        {"spec", to_json(cases[i])},
-                        {"result", to_json(results[i])}};
-        const fs::path file = folder / (case_folder(cases[i].id) + ".json");
-        const std::string bytes = j.dump(2) + "\n";
-        auto signature = ssh_sign(runner.key, bytes, kCaseResultNamespace);
-        if (!signature) return signature.error();
-        ACETATE_TRY(write_file_atomically(signature_file(file), signature.value()));
-        ACETATE_TRY(write_file_atomically(file, bytes));
-    }
-    return {};
+    json j = {{"format", kShardFormat},
+              {"runner", out.runner.name},
+              {"harness_version", kHarnessVersion},
+              {"plugin", to_json(out.plugin)},
+              {"strictness", out.strictness},
+              {"seed", out.seed},
+              {"stage", to_string(stage)},
+              {"spec", to_json(spec)},
+              {"result", to_json(result)}};
+    if (out.shard) j["shard"] = out.shard->label();
+    const fs::path file = folder / (case_folder(spec.id) + ".json");
+    const std::string bytes = j.dump(2) + "\n";
+    auto signature = ssh_sign(out.runner.key, bytes, kCaseResultNamespace);
+    if (!signature) return signature.error();
+    ACETATE_TRY(write_file_atomically(signature_file(file), signature.value()));
+    return write_file_atomically(file, bytes);
 }
 
 Result<std::vector<ShardResult>> read_shard_results(const std::vector<fs::path>& folders,

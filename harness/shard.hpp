@@ -1,10 +1,10 @@
 #pragma once
-// One validation split across processes or machines (docs/cluster.md): `validate --list-cases`
-// prints the plan; `validate --case ID... --out DIR` runs those cases and writes each result
-// to DIR/results/<case>.json with what it was run on (the binary's SHA-256, the strictness,
-// the seed, the harness); `merge DIR...` reads them back and judges and records the stages
-// exactly as one run would (validate.cpp). Nothing here schedules anything: the cluster's own
-// scheduler starts the shards.
+// One validation split across processes or machines (docs/cluster.md): `validate --shard K/N
+// --out DIR` (or `--case ID... --out DIR`) runs its cases and writes each result, as the case
+// finishes, to DIR/results/<case>.json with what it was run on (the binary's SHA-256, the
+// strictness, the seed, the harness, the shard); `merge DIR...` reads them back and judges and
+// records the stages exactly as one run would (validate.cpp). Nothing here schedules anything:
+// the cluster's own scheduler starts the shards.
 
 #include <filesystem>
 #include <string>
@@ -14,11 +14,12 @@
 #include "core/result.hpp"
 #include "registry.hpp"
 #include "report.hpp"
+#include "shard_plan.hpp"
 #include "ssh_signature.hpp"
 
 namespace acetate::harness {
 
-inline constexpr const char* kShardFormat = "acetate-case-result/2";
+inline constexpr const char* kShardFormat = "acetate-case-result/3";
 
 // Who signs a shard's results: a name the allowed signers list for a key that may sign in the
 // namespace kCaseResultNamespace, and that key's file (docs/cluster.md, "Runner keys").
@@ -33,19 +34,28 @@ struct ShardResult {
     uint64_t seed = 0;
     std::string harness_version;
     std::string runner;                                    // who ran it and signed the file
+    std::optional<ShardSelection> shard;                   // --shard K/N, when it ran as one
     ValidationStage stage = ValidationStage::AlphaTested;  // the stage the case belongs to
     CaseSpec spec;
     CaseResult result;
     std::filesystem::path file;  // where it was read from
 };
 
-// Writes one file per case under `out`/results/, each atomically, and beside each its
-// runner's SSH signature over the file's exact bytes (`<case>.json.sig`, written first, so a
-// result file never stands without one).
-Result<void> write_shard_results(const std::filesystem::path& out, const PluginInfo& plugin,
-                                 int strictness, uint64_t seed, ValidationStage stage,
-                                 const std::vector<CaseSpec>& cases,
-                                 const std::vector<CaseResult>& results, const Runner& runner);
+// What every result of one shard says it ran on, and where it goes.
+struct ShardOutput {
+    std::filesystem::path folder;  // --out
+    PluginInfo plugin;
+    int strictness = 0;
+    uint64_t seed = 0;
+    Runner runner;
+    std::optional<ShardSelection> shard;
+};
+
+// Writes one case's file under `out.folder`/results/, atomically, and beside it its runner's
+// SSH signature over the file's exact bytes (`<case>.json.sig`, written first, so a result
+// file never stands without one). Called as each case finishes: a shard killed later keeps it.
+Result<void> write_shard_result(const ShardOutput& out, ValidationStage stage, const CaseSpec& spec,
+                                const CaseResult& result);
 
 // Every result under each folder's results/, checked to belong to one run: each signed by the
 // runner it names, with a key `runners` allows in kCaseResultNamespace, over its exact bytes;

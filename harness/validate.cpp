@@ -51,6 +51,14 @@ std::string reproduce_command(const ValidateOptions& o, const std::string& case_
     return command;
 }
 
+// This machine's name as a folder name: a --case shard's own folder is named by it and its
+// process id, as two machines' process ids may coincide.
+std::string host_name() {
+    char name[256] = {};
+    if (gethostname(name, sizeof name - 1) != 0) return "host";
+    return case_folder(name);
+}
+
 CheckResult* find_check(CaseResult& c, const std::string& name) {
     for (CheckResult& check : c.checks)
         if (check.check == name) return &check;
@@ -198,8 +206,8 @@ int run_list_cases(const ValidateOptions& o) {
         return 1;
     }
     described->reference_scenes = std::move(scenes.value());
-    for (const CaseSpec& c : plan_cases(*described, o.strictness, o.seed, true,
-                                        o.up_to >= ValidationStage::Integrated, {}))
+    for (const PlannedCase& c :
+         plan_of_run(*described, o.strictness, o.seed, o.up_to >= ValidationStage::Integrated))
         std::printf("%s\n", c.id.c_str());
     return 0;
 }
@@ -219,29 +227,38 @@ int run_validate(const ValidateOptions& o) {
                      o.report_directory.string().c_str(), ec.message().c_str());
         return 1;
     }
+    // This process's own files (plugin.json, describe.log, its report): a shard's go into a
+    // folder of its own under --out, which no other shard writes or reads, so shards may share
+    // one --out; the pictures stay under the report folder, one folder per case.
+    const fs::path own =
+        !o.out    ? o.report_directory
+        : o.shard ? *o.out / "shards" / o.shard->folder()
+                  : *o.out / "shards" / fmt::format("cases-{}-{}", host_name(), getpid());
     const fs::path html = o.report_directory / "index.html";
     // Writes the reports; a run that already failed says so in one line, with the reports'
     // own failure (a full disk, say) appended rather than printed as a second error.
+    const fs::path shown = fs::absolute(o.out ? own / "report.json" : html);
     auto finish = [&](int status) {
         report.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-        auto written = write_json_report(report, o.report_directory / "report.json");
+        auto written = write_json_report(report, own / "report.json");
         if (written && o.json_file) written = write_json_report(report, *o.json_file);
         if (written && o.junit_file) written = write_junit_report(report, *o.junit_file);
-        if (written) written = write_html_report(report, o.report_directory);
+        // A shard's page would be one of many over one folder: the merge writes the page.
+        if (written && !o.out) written = write_html_report(report, o.report_directory);
         if (!report.error.empty()) {
             std::fprintf(stderr, "acetate-harness: %s%s\n", report.error.c_str(),
                          written ? ""
                                  : fmt::format(" (and the report could not be written: {})",
                                                written.error().message)
                                        .c_str());
-            if (written) std::printf("report: %s\n", fs::absolute(html).string().c_str());
+            if (written) std::printf("report: %s\n", shown.string().c_str());
             return 1;
         }
         if (!written) {
             std::fprintf(stderr, "acetate-harness: %s\n", written.error().message.c_str());
             return 1;
         }
-        std::printf("report: %s\n", fs::absolute(html).string().c_str());
+        std::printf("report: %s\n", shown.string().c_str());
         return status;
     };
     auto fail_run = [&](const std::string& message) {
@@ -264,7 +281,7 @@ int run_validate(const ValidateOptions& o) {
     }
     // A merge plans from the plugin itself, as a single run does, never from what the result
     // files say it was: they are only the shards' word.
-    auto described = describe_in_child(o.self, o.plugin, o.report_directory, o.timeout_seconds);
+    auto described = describe_in_child(o.self, o.plugin, own, o.timeout_seconds);
     if (!described) return fail_run(described.error().message);
     if (merging && described->binary_sha256 != shards.front().plugin.binary_sha256)
         return fail_run(fmt::format(
@@ -283,9 +300,45 @@ int run_validate(const ValidateOptions& o) {
     report.coverage = plugin.coverage;
     report.binary_sha256 = plugin.binary_sha256;
     report.source_digest = plugin.source_digest;
-    const fs::path plugin_info_file = o.report_directory / "plugin.json";
+    const fs::path plugin_info_file = own / "plugin.json";
     if (auto w = write_file_atomically(plugin_info_file, to_json(plugin).dump(2)); !w)
         return fail_run(w.error().message);
+    const std::vector<PlannedCase> plan =
+        plan_of_run(plugin, o.strictness, o.seed, o.up_to >= ValidationStage::Integrated);
+    // A shard cuts its cases from the plan and leaves the plan beside the results (status).
+    std::vector<std::string> only_cases = o.only_cases;
+    if (o.shard) {
+        ShardPlan cut{plugin.id,    plugin.version, plugin.binary_sha256,
+                      o.strictness, o.seed,         o.shard->count,
+                      plan};
+        if (auto w = write_shard_plan(*o.out, cut); !w) return fail_run(w.error().message);
+        for (size_t i = 0; i < plan.size(); ++i)
+            if (o.shard->owns(i)) only_cases.push_back(plan[i].id);
+        std::printf("shard %s: %zu of the plan's %zu cases\n", o.shard->label().c_str(),
+                    only_cases.size(), plan.size());
+    }
+    // A merge needs a result for every case of the plan: every missing one is named at once,
+    // by the shard that owes it, so one re-submission completes the run.
+    if (merging) {
+        std::set<std::string> found;
+        std::optional<unsigned> shard_count;
+        for (const ShardResult& r : shards) {
+            found.insert(r.spec.id);
+            if (r.shard && !shard_count) shard_count = r.shard->count;
+        }
+        std::vector<std::string> ids;
+        for (const PlannedCase& c : plan) ids.push_back(c.id);
+        const std::vector<std::string> owed = missing_by_shard(ids, found, shard_count);
+        if (!owed.empty()) {
+            size_t missing = 0;
+            for (const std::string& id : ids) missing += found.count(id) ? 0 : 1;
+            return fail_run(
+                fmt::format("merge: {} of the plan's {} cases have no result in {}:\n  {}\n"
+                            "run {} again (validate --shard K/N --out DIR), then merge again",
+                            missing, ids.size(), o.merge_from.front().string(),
+                            fmt::join(owed, "\n  "), shard_count ? "those shards" : "those cases"));
+        }
+    }
 
     // A malformed registry stops the run here, rather than reading as "nothing recorded".
     // Everything this run records goes through one transaction, written only at its end: a
@@ -296,7 +349,7 @@ int run_validate(const ValidateOptions& o) {
     // So do malformed references; missing ones mean the reference cases only render.
     auto references = load_references(o.references, plugin.id);
     if (!references) return fail_run(references.error().message);
-    const bool partial = !o.only_cases.empty();
+    const bool partial = o.shard || !only_cases.empty();
     if (!partial) {
         auto imported = import_committed(registry, o, plugin);
         if (!imported) return fail_run(imported.error().message);
@@ -321,7 +374,7 @@ int run_validate(const ValidateOptions& o) {
     auto select = [&](std::vector<CaseSpec> cases) {
         if (!partial) return cases;
         std::erase_if(cases, [&](const CaseSpec& c) {
-            return std::find(o.only_cases.begin(), o.only_cases.end(), c.id) == o.only_cases.end();
+            return std::find(only_cases.begin(), only_cases.end(), c.id) == only_cases.end();
         });
         return cases;
     };
@@ -341,11 +394,24 @@ int run_validate(const ValidateOptions& o) {
                       const std::vector<CaseSpec>& cases) -> Result<std::vector<CaseResult>> {
         if (!merging) {
             run.total += cases.size() * std::max(1u, o.repeat);
-            std::vector<CaseResult> results = run_repeated(run, cases, {o.repeat, o.shuffle_seed});
+            // A shard writes each result as its case finishes; the first write that fails
+            // (a full disk, the key) stops the shard with that error once the batch is done.
+            std::optional<Error> unwritten;
             if (o.out)
-                ACETATE_TRY(
-                    write_shard_results(*o.out, plugin, o.strictness, o.seed, stage, cases, results,
-                                        Runner{o.runner, o.runner_key.value_or(fs::path())}));
+                run.on_result = [&](size_t i, const CaseResult& result) {
+                    if (unwritten) return;
+                    const ShardOutput to{*o.out,
+                                         plugin,
+                                         o.strictness,
+                                         o.seed,
+                                         Runner{o.runner, o.runner_key.value_or(fs::path())},
+                                         o.shard};
+                    if (auto w = write_shard_result(to, stage, cases[i], result); !w)
+                        unwritten = w.error();
+                };
+            std::vector<CaseResult> results = run_repeated(run, cases, {o.repeat, o.shuffle_seed});
+            run.on_result = {};
+            if (unwritten) return *unwritten;
             return results;
         }
         std::vector<CaseResult> results;
@@ -385,7 +451,7 @@ int run_validate(const ValidateOptions& o) {
         if (!stage_run.passed) {
             stage_run.note = "a check failed: nothing recorded";
         } else if (partial) {
-            stage_run.note = "only some cases ran (--case): nothing recorded";
+            stage_run.note = "only some cases ran (--shard or --case): nothing recorded";
         } else if (int(now) < int(stage) - 1) {
             stage_run.note = fmt::format(
                 "passed, but not recorded: the plugin is {} and {} needs {} first{}",
@@ -416,13 +482,13 @@ int run_validate(const ValidateOptions& o) {
         return stage_run.passed;
     };
 
-    if (partial) {
+    if (partial && !o.shard) {
         // Every case a full run at this strictness has (integration ones with no companions:
         // their ids do not depend on them).
         std::vector<std::string> known;
         for (const CaseSpec& c : plan_cases(plugin, o.strictness, o.seed, true, true, {}))
             known.push_back(c.id);
-        for (const std::string& id : o.only_cases)
+        for (const std::string& id : only_cases)
             if (std::find(known.begin(), known.end(), id) == known.end())
                 return fail_run(fmt::format("--case {}: no such case at strictness {} (cases: {})",
                                             id, o.strictness, fmt::join(known, ", ")));
@@ -434,11 +500,12 @@ int run_validate(const ValidateOptions& o) {
                     plugin.id.c_str(), o.references.string().c_str());
     else if (stale_references)
         std::printf("references: %s\n", stale_references->message.c_str());
-    if (partial && o.up_to < ValidationStage::Integrated &&
-        alpha_cases.size() != o.only_cases.size())
+    if (partial && o.up_to < ValidationStage::Integrated && alpha_cases.size() != only_cases.size())
         return fail_run("--case: integration cases do not run with --stage alpha-tested");
     bool passed = alpha_cases.empty() || try_stage(ValidationStage::AlphaTested, alpha_cases, {});
-    if (passed && o.up_to >= ValidationStage::Integrated) {
+    // Some cases (a shard, --case) run whatever was asked, as the whole run's alpha verdict
+    // is only known where every case is (the merge).
+    if ((passed || partial) && o.up_to >= ValidationStage::Integrated) {
         std::vector<std::string> notes;
         Registry verified = registry.view();
         std::vector<CompanionPlugin> companions;
@@ -502,6 +569,11 @@ int run_validate(const ValidateOptions& o) {
                                    : "all checks passed");
     for (const StageRun& s : report.stages)
         std::printf("  %s: %s\n", s.stage.c_str(), s.note.c_str());
+    if (o.out) {
+        std::printf("results: %s (for `acetate-harness merge`, which judges them)\n",
+                    (*o.out / "results").string().c_str());
+        return finish(0);
+    }
     return finish(run_failed(report) || recording_failed ? 1 : 0);
 }
 

@@ -11,6 +11,7 @@
 #include "case_spec.hpp"
 #include "core/result.hpp"
 #include "registry.hpp"
+#include "shard_plan.hpp"
 
 namespace acetate::harness {
 
@@ -51,6 +52,9 @@ struct ValidateOptions {
     // and records the results read from merge_from instead of running cases.
     bool list_cases = false;
     std::optional<std::filesystem::path> out;
+    // --shard K/N (with --out): run the plan's cases at positions K, K + N, ... (shard_plan.hpp)
+    // and write the plan to DIR/plan.json.
+    std::optional<ShardSelection> shard;
     // With --out: who signs each result (--runner, --runner-key; shard.hpp). merge verifies
     // the signatures against the allowed signers in the case-result namespace.
     std::string runner;
@@ -61,10 +65,11 @@ struct ValidateOptions {
 };
 
 // Returns the exit status: 0 when no check failed, 1 when one did or the run could not start.
+// A run with --out (a shard) returns 0 once every result is written, failing or not (the merge
+// judges them), and 1 only when it could not run: a scheduler sees failures of its own.
 int run_validate(const ValidateOptions& options);
 // `validate --list-cases`: the case ids of a run of `options.plugin` at its strictness, seed
-// and stage, one per line (the integration ones as if no companion were integrated: their ids
-// do not depend on them). Returns the exit status.
+// and stage, one per line, in plan order (plan_of_run). Returns the exit status.
 int run_list_cases(const ValidateOptions& options);
 
 // What the plugin declares, read in this process (the `describe` child does this). With

@@ -253,8 +253,19 @@ int run_harness(int argc, char** argv) {
                 "Print the run's case ids, one per line, and run nothing (for a cluster: "
                 "docs/cluster.md)");
     v->add_option("--out", validate.out,
-                  "With --case: write each case's result to DIR/results/ for `merge`; record "
-                  "nothing");
+                  "With --shard or --case: write each case's result to DIR/results/ for "
+                  "`merge` as it finishes; record nothing; exit 0 once written, failing or not");
+    v->add_option_function<std::string>(
+         "--shard",
+         [&validate](const std::string& text) {
+             auto selection = parse_shard_selection(text, "--shard");
+             if (!selection) throw CLI::ValidationError(selection.error().message);
+             validate.shard = selection.value();
+         },
+         "With --out: run shard K of N (K from 0): the plan's cases at positions K, K+N, ...")
+        ->type_name("K/N")
+        ->excludes("--case")
+        ->excludes("--list-cases");
     v->add_option("--runner", validate.runner,
                   "With --out: the name the allowed signers list for --runner-key, signed into "
                   "each result (default: $ACETATE_RUNNER)");
@@ -322,13 +333,19 @@ int run_harness(int argc, char** argv) {
         ->required();
     flags::add_name(w, "--by", waive.by, "Who waives it")->required();
     bool status_json = false;
-    CLI::App* s = app.add_subcommand("status", "Show the registry");
+    std::optional<fs::path> status_plan;
+    CLI::App* s = app.add_subcommand(
+        "status", "Show the registry, or with --plan DIR the progress of a sharded run");
     s->add_flag("--json", status_json, "As JSON");
+    s->add_option("--plan", status_plan,
+                  "The --out folder of `validate --shard`: results found against its plan, per "
+                  "shard")
+        ->excludes("--json");
 
     std::vector<fs::path> merge_folders;
     std::optional<fs::path> merge_report;
     CLI::App* m = app.add_subcommand(
-        "merge", "Judge and record the results `validate --case ID --out DIR` wrote, as one run");
+        "merge", "Judge and record the results `validate --shard K/N --out DIR` wrote, as one run");
     m->add_option("folders", merge_folders, "The --out folders of the shards")->required();
     m->add_option("--report", merge_report, "Report folder (default: the first folder)");
     m->add_option("--json", validate.json_file, "Also write the JSON report here");
@@ -414,10 +431,12 @@ int run_harness(int argc, char** argv) {
             validate.plugin = fs::absolute(validate.plugin);
             if (shuffle) validate.shuffle_seed = std::random_device{}();
             if (validate.list_cases) return run_list_cases(validate);
+            if (validate.shard && !validate.out)
+                return fail("--shard: give the shared results folder with --out DIR");
             if (validate.out) {
-                if (validate.only_cases.empty())
+                if (validate.only_cases.empty() && !validate.shard)
                     return fail(
-                        "--out: name the cases to run with --case ID (validate "
+                        "--out: name the cases to run with --shard K/N or --case ID (validate "
                         "--list-cases prints them)");
                 validate.out = fs::absolute(*validate.out);
                 if (!report_flag) validate.report_directory = *validate.out;
@@ -485,6 +504,7 @@ int run_harness(int argc, char** argv) {
         if (!context.signing_key)
             if (const char* env = std::getenv("ACETATE_SIGNING_KEY"); env && *env)
                 context.signing_key = fs::path(env);
+        if (s->parsed() && status_plan) return run_shard_status(*status_plan);
         if (s->parsed()) return run_status(context, status_json);
         for (auto [sub, file] : {std::pair{r, &review_plugin}, std::pair{p, &promote_plugin},
                                  std::pair{w, &waive_plugin}}) {

@@ -224,9 +224,14 @@ TEST_F(HarnessInputs, MergeRefusesAReportOverAShardResult) {
     spec.id = "contract/standard";
     harness::CaseResult result;
     result.id = spec.id;
-    ASSERT_TRUE(harness::write_shard_results(
-        dir_ / "shard", plugin, 1, 7, ValidationStage::AlphaTested, {spec}, {result},
-        harness::Runner{test::kTestRunnerName, test::test_signer().runner_key}));
+    const harness::ShardOutput out{
+        dir_ / "shard",
+        plugin,
+        1,
+        7,
+        harness::Runner{test::kTestRunnerName, test::test_signer().runner_key},
+        std::nullopt};
+    ASSERT_TRUE(harness::write_shard_result(out, ValidationStage::AlphaTested, spec, result));
     std::vector<fs::path> files;
     for (const auto& item : fs::directory_iterator(dir_ / "shard" / "results"))
         if (item.path().extension() == ".json") files.push_back(item.path());

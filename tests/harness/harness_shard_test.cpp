@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -59,6 +60,30 @@ class HarnessShards : public ::testing::Test {
                                   " --reviewer rita@example.org --notes 'read it'");
         ASSERT_EQ(run.code, 0) << run.describe();
     }
+    // `validate --shard K/N --out DIR` for the plugin at the test's strictness and seed.
+    test::CommandResult shard(const fs::path& registry, const std::string& k_of_n,
+                              const fs::path& out) const {
+        return harness(registry, "validate " + common() + " --shard " + k_of_n + " --out " +
+                                     shell_quote(out.string()));
+    }
+    // Two shards at once, into one folder; the exit status is the first non-zero of the two.
+    test::CommandResult harness_pair(const fs::path& registry,
+                                     const std::array<std::string, 2>& shards,
+                                     const fs::path& out) const {
+        // `&` binds looser than `&&`: the folder and environment are set first, on their own.
+        std::string command = "cd " + shell_quote(dir_.string()) + " || exit 1; export " +
+                              test::harness_environment() + " " + test::signer_environment() + "; ";
+        for (size_t i = 0; i < shards.size(); ++i)
+            command += "{ " + shell_quote(ACETATE_HARNESS_PATH) + " --registry " +
+                       shell_quote(registry.string()) + " validate " + common() + " --shard " +
+                       shards[i] + " --out " + shell_quote(out.string()) + " > shard" +
+                       std::to_string(i) + ".log 2>&1; echo $? > shard" + std::to_string(i) +
+                       ".status; } & ";
+        command +=
+            "wait; cat shard0.log shard1.log; s0=$(cat shard0.status); s1=$(cat "
+            "shard1.status); [ \"$s0\" = 0 ] || exit \"$s0\"; exit \"$s1\"";
+        return test::run_command(command, dir_);
+    }
     std::string common() const {
         return shell_quote(plugin().string()) + " --strictness 1 --seed 7 --jobs 2 --timeout 60";
     }
@@ -108,14 +133,45 @@ TEST_F(HarnessShards, FourShardsMergedEqualOneRun) {
     EXPECT_EQ(ids,
               test::nonempty_lines(harness(sharded, "validate " + common() + " --list-cases").out))
         << "the plan is stable";
+    // Shards 0, 1 and 3 of 4 share one folder, two at a time, as a job array throttled to 2
+    // would run them: each describes the plugin into a folder of its own.
     const fs::path shared = dir_ / "shared";
-    for (size_t shard = 0; shard < 4; ++shard) {
-        std::string cases;
-        for (size_t i = shard; i < ids.size(); i += 4) cases += " --case " + shell_quote(ids[i]);
-        const test::CommandResult run = harness(
-            sharded, "validate " + common() + cases + " --out " + shell_quote(shared.string()));
-        ASSERT_EQ(run.code, 0) << run.describe();
-    }
+    const test::CommandResult pair = harness_pair(sharded, {"0/4", "1/4"}, shared);
+    ASSERT_EQ(pair.code, 0) << pair.describe();
+    const test::CommandResult third = shard(sharded, "3/4", shared);
+    ASSERT_EQ(third.code, 0) << third.describe();
+
+    // Shard 2/4 never ran: the merge names every case it owes, on one line, and records nothing.
+    const std::string registry_before = test::read_file(sharded);
+    const test::CommandResult incomplete =
+        harness(sharded, "merge " + shell_quote(shared.string()));
+    EXPECT_EQ(incomplete.code, 1) << incomplete.describe();
+    std::vector<std::string> owed;
+    for (size_t i = 2; i < ids.size(); i += 4) owed.push_back(ids[i]);
+    std::string owed_line = "shard 2/4: " + std::to_string(owed.size()) + " cases: ";
+    for (size_t i = 0; i < owed.size(); ++i) owed_line += (i ? ", " : "") + owed[i];
+    const std::vector<std::string> lines = test::nonempty_lines(incomplete.err);
+    ASSERT_EQ(lines.size(), 3u) << incomplete.err;
+    EXPECT_TRUE(contains(lines[0], "merge: " + std::to_string(owed.size()) + " of the plan's " +
+                                       std::to_string(ids.size()) + " cases have no result"))
+        << lines[0];
+    EXPECT_EQ(lines[1], "  " + owed_line);
+    EXPECT_TRUE(contains(lines[2], "run those shards again")) << lines[2];
+    EXPECT_EQ(test::read_file(sharded), registry_before);
+    const test::CommandResult progress =
+        harness(sharded, "status --plan " + shell_quote(shared.string()));
+    ASSERT_EQ(progress.code, 0) << progress.describe();
+    EXPECT_TRUE(contains(progress.out, std::to_string(ids.size() - owed.size()) + " of " +
+                                           std::to_string(ids.size()) + " results"))
+        << progress.out;
+    for (const std::string& line : test::nonempty_lines(progress.out))
+        if (contains(line, "shard 2/4")) {
+            EXPECT_TRUE(contains(line, " 0 of ") && !contains(line, "complete")) << line;
+        }
+
+    // The missing shard, re-run on its own, completes the run.
+    const test::CommandResult rerun = shard(sharded, "2/4", shared);
+    ASSERT_EQ(rerun.code, 0) << rerun.describe();
     const std::string before_merge = test::read_file(sharded);
     EXPECT_EQ(json::parse(before_merge)["plugins"][0]["stage"], "REVIEWED")
         << "a shard records nothing";
@@ -153,8 +209,26 @@ TEST_F(HarnessShards, ResultsThatDoNotBelongToOneRunAreOneLineNamingTheFile) {
         EXPECT_TRUE(contains(lines[0], part)) << lines[0];
         EXPECT_EQ(test::read_file(registry), registry_before);
     };
-    // Two cases of the plan only: the rest are missing.
-    expect_refusal("merge: no result for case ");
+    // Two cases of the plan only: every other one is named as missing (no shard ran them:
+    // these are --case results), and nothing is recorded.
+    {
+        const test::CommandResult merged =
+            harness(registry, "merge " + shell_quote(shared.string()));
+        EXPECT_EQ(merged.code, 1) << merged.describe();
+        const auto lines = test::nonempty_lines(merged.err);
+        ASSERT_EQ(lines.size(), 3u) << merged.err;
+        EXPECT_TRUE(contains(lines[0], " cases have no result in " + shared.string())) << lines[0];
+        std::vector<std::string> planned = test::nonempty_lines(
+            harness(registry, "validate " + common() + " --stage alpha-tested --list-cases").out);
+        std::erase_if(planned, [](const std::string& id) {
+            return id == "contract/standard" || id == "sizes/1x1";
+        });
+        std::string expected = "  " + std::to_string(planned.size()) + " cases: ";
+        for (size_t i = 0; i < planned.size(); ++i) expected += (i ? ", " : "") + planned[i];
+        EXPECT_EQ(lines[1], expected);
+        EXPECT_TRUE(contains(lines[2], "run those cases again")) << lines[2];
+        EXPECT_EQ(test::read_file(registry), registry_before);
+    }
 
     // A verdict edited in the shared folder: the runner's signature no longer holds.
     const fs::path file = shared / "results" / "sizes_1x1.json";
@@ -299,6 +373,95 @@ TEST_F(HarnessShards, AShardWithoutARunnerKeyRunsNothing) {
         contains(lines[0], "--runner-key: " + fifo.string() + ": not a regular file (a FIFO)"))
         << lines[0];
     EXPECT_FALSE(fs::exists(shared / "results"));
+}
+
+// A shard writes each result as its case finishes: killed mid-run (the whole process group,
+// as a scheduler's cancel does), it keeps what finished, each file whole and signed; the merge
+// names what it lost, and the same shard run again completes the folder.
+TEST_F(HarnessShards, AKilledShardKeepsTheCasesThatFinished) {
+    const fs::path registry = dir_ / "registry.json";
+    review(registry);
+    if (HasFatalFailure()) return;
+    const std::vector<std::string> ids = test::nonempty_lines(
+        harness(registry, "validate " + common() + " --stage alpha-tested --list-cases").out);
+    const fs::path shared = dir_ / "shared";
+    const test::CommandResult killed = test::run_command(
+        "cd " + shell_quote(dir_.string()) + " || exit 1; export " + test::harness_environment() +
+            " " + test::signer_environment() + "; setsid " + shell_quote(ACETATE_HARNESS_PATH) +
+            " --registry " + shell_quote(registry.string()) + " validate " +
+            shell_quote(plugin().string()) +
+            " --strictness 1 --seed 7 --timeout 60 --jobs 1 --stage alpha-tested --shard 0/1 "
+            "--out shared > killed.log 2>&1 & pid=$!; n=0; for i in $(seq 1200); do "
+            "n=$(ls shared/results/ 2>/dev/null | grep -c '\\.json$'); [ \"$n\" -ge 3 ] && "
+            "break; sleep 0.05; done; kill -KILL -$pid; wait $pid; echo \"status $?\"",
+        dir_);
+    EXPECT_TRUE(contains(killed.out, "status 137")) << killed.describe();
+
+    std::vector<fs::path> kept;
+    for (const auto& item : fs::directory_iterator(shared / "results"))
+        if (item.path().extension() == ".json") kept.push_back(item.path());
+    ASSERT_GE(kept.size(), 3u);
+    ASSERT_LT(kept.size(), ids.size()) << "killed before the end";
+    for (const fs::path& file : kept) {
+        EXPECT_NO_THROW(json::parse(test::read_file(file))) << file;
+        EXPECT_TRUE(fs::is_regular_file(file.string() + ".sig")) << file;
+    }
+    const test::CommandResult progress =
+        harness(registry, "status --plan " + shell_quote(shared.string()));
+    EXPECT_TRUE(contains(progress.out, std::to_string(kept.size()) + " of " +
+                                           std::to_string(ids.size()) + " results; not complete"))
+        << progress.describe();
+    const test::CommandResult lost = harness(registry, "merge " + shell_quote(shared.string()));
+    EXPECT_EQ(lost.code, 1) << lost.describe();
+    EXPECT_TRUE(
+        contains(lost.err, "  shard 0/1: " + std::to_string(ids.size() - kept.size()) + " cases: "))
+        << lost.err;
+
+    const test::CommandResult again =
+        harness(registry, "validate " + common() + " --stage alpha-tested --shard 0/1 --out " +
+                              shell_quote(shared.string()));
+    ASSERT_EQ(again.code, 0) << again.describe();
+    const test::CommandResult merged = harness(registry, "merge " + shell_quote(shared.string()));
+    EXPECT_EQ(merged.code, 0) << merged.describe();
+    EXPECT_EQ(json::parse(test::read_file(registry))["plugins"][0]["stage"], "ALPHA_TESTED");
+}
+
+// A shard of a plugin that fails a check exits 0 once its results are written: a scheduler
+// reads a non-zero status as its own failure (and retries, or holds the merge back). The merge
+// judges the results, fails the plugin, and writes its report and JUnit. A shard that cannot
+// run (the plugin cannot be described) exits non-zero.
+TEST_F(HarnessShards, AFailingPluginsShardsExitZeroAndItsMergeFailsIt) {
+    const fs::path registry = dir_ / "registry.json";
+    fs::copy_file(fs::path(ACETATE_HARNESS_PLUGIN_DIR) / "colour_at_zero.so",
+                  dir_ / "plugins" / "colour_at_zero.so");
+    const std::string failing = shell_quote((dir_ / "plugins" / "colour_at_zero.so").string()) +
+                                " --strictness 1 --seed 7 --jobs 2 --timeout 60 --stage "
+                                "alpha-tested";
+    const fs::path shared = dir_ / "shared";
+    for (const char* k : {"0/2", "1/2"}) {
+        const test::CommandResult run =
+            harness(registry, "validate " + failing + " --shard " + k + " --out " +
+                                  shell_quote(shared.string()));
+        EXPECT_EQ(run.code, 0) << run.describe();
+    }
+    const test::CommandResult progress =
+        harness(registry, "status --plan " + shell_quote(shared.string()));
+    EXPECT_TRUE(contains(progress.out, "failing; ready to merge")) << progress.describe();
+    const fs::path junit = dir_ / "junit.xml";
+    const test::CommandResult merged =
+        harness(registry, "merge " + shell_quote(shared.string()) + " --junit " +
+                              shell_quote(junit.string()));
+    EXPECT_EQ(merged.code, 1) << merged.describe();
+    EXPECT_TRUE(contains(merged.out, "FAILED")) << merged.out;
+    EXPECT_TRUE(contains(test::read_file(junit), "<failure")) << "the merge's JUnit";
+    EXPECT_TRUE(fs::is_regular_file(shared / "report.json"));
+
+    test::write_text(dir_ / "plugins" / "not_a_plugin.so", "text, not a library");
+    const test::CommandResult broken = harness(
+        registry, "validate " + shell_quote((dir_ / "plugins" / "not_a_plugin.so").string()) +
+                      " --strictness 1 --shard 0/2 --out " + shell_quote((dir_ / "b").string()));
+    EXPECT_EQ(broken.code, 1) << broken.describe();
+    EXPECT_TRUE(contains(broken.err, "cannot describe the plugin")) << broken.err;
 }
 
 }  // namespace
