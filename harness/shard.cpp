@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include "case_batch.hpp"
 #include "core/atomic_file.hpp"
@@ -179,6 +180,28 @@ Result<std::vector<ShardResult>> read_shard_results(const std::vector<fs::path>&
         }
     }
     return all;
+}
+
+std::optional<std::string> missing_results(const std::vector<PlannedCase>& plan,
+                                           const std::vector<ShardResult>& results,
+                                           const fs::path& folder) {
+    std::set<std::string> found;
+    std::optional<unsigned> shard_count;  // none when the results came from --case runs
+    for (const ShardResult& r : results) {
+        found.insert(r.spec.id);
+        if (r.shard && !shard_count) shard_count = r.shard->count;
+    }
+    std::vector<std::string> ids;
+    for (const PlannedCase& c : plan) ids.push_back(c.id);
+    const std::vector<std::string> owed = missing_by_shard(ids, found, shard_count);
+    if (owed.empty()) return std::nullopt;
+    const size_t missing = size_t(
+        std::count_if(ids.begin(), ids.end(), [&](const auto& id) { return !found.count(id); }));
+    return fmt::format(
+        "merge: {} of the plan's {} cases have no result in {}:\n  {}\n"
+        "run {} again (validate --shard K/N --out DIR), then merge again",
+        missing, ids.size(), folder.string(), fmt::join(owed, "\n  "),
+        shard_count ? "those shards" : "those cases");
 }
 
 }  // namespace acetate::harness

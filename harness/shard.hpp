@@ -7,6 +7,7 @@
 // the cluster's own scheduler starts the shards.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,5 +65,12 @@ Result<void> write_shard_result(const ShardOutput& out, ValidationStage stage, c
 // holds no result).
 Result<std::vector<ShardResult>> read_shard_results(
     const std::vector<std::filesystem::path>& folders, const SignatureVerifier& runners);
+
+// For a merge: every case of `plan` with no result in `results` (read from `folder`), named in
+// one error by the shard that owes it (shard_plan.hpp, missing_by_shard), so that one
+// re-submission completes the run; nothing when every case has one.
+std::optional<std::string> missing_results(const std::vector<PlannedCase>& plan,
+                                           const std::vector<ShardResult>& results,
+                                           const std::filesystem::path& folder);
 
 }  // namespace acetate::harness

@@ -317,28 +317,10 @@ int run_validate(const ValidateOptions& o) {
         std::printf("shard %s: %zu of the plan's %zu cases\n", o.shard->label().c_str(),
                     only_cases.size(), plan.size());
     }
-    // A merge needs a result for every case of the plan: every missing one is named at once,
-    // by the shard that owes it, so one re-submission completes the run.
-    if (merging) {
-        std::set<std::string> found;
-        std::optional<unsigned> shard_count;
-        for (const ShardResult& r : shards) {
-            found.insert(r.spec.id);
-            if (r.shard && !shard_count) shard_count = r.shard->count;
-        }
-        std::vector<std::string> ids;
-        for (const PlannedCase& c : plan) ids.push_back(c.id);
-        const std::vector<std::string> owed = missing_by_shard(ids, found, shard_count);
-        if (!owed.empty()) {
-            size_t missing = 0;
-            for (const std::string& id : ids) missing += found.count(id) ? 0 : 1;
-            return fail_run(
-                fmt::format("merge: {} of the plan's {} cases have no result in {}:\n  {}\n"
-                            "run {} again (validate --shard K/N --out DIR), then merge again",
-                            missing, ids.size(), o.merge_from.front().string(),
-                            fmt::join(owed, "\n  "), shard_count ? "those shards" : "those cases"));
-        }
-    }
+    // A merge needs a result for every case of the plan: every missing one is named at once.
+    if (merging)
+        if (auto missing = missing_results(plan, shards, o.merge_from.front()))
+            return fail_run(*missing);
 
     // A malformed registry stops the run here, rather than reading as "nothing recorded".
     // Everything this run records goes through one transaction, written only at its end: a

@@ -65,13 +65,18 @@ same-as-one-run)
   cp "$plugin_dir/lighting.so" "$plugin"
   review "$plugin" single.json
   review "$plugin" registry.json
+  started=$(date +%s%N)
   "$harness" --registry single.json validate "$plugin" --strictness 1 --seed 3 --report one >one.log ||
     fail "the single run failed: $(tail -n 3 one.log)"
+  single_ms=$(( ($(date +%s%N) - started) / 1000000 ))
+  started=$(date +%s%N)
   out=$(ACETATE_SHARDS=4 ACETATE_AT_ONCE=2 "$submit" "$plugin" 1 3)
   echo "$out"
   read -r array merge <<< "$(job_ids "$out")"
   most=$(wait_job "$array")
   wait_job "$merge" >/dev/null
+  array_ms=$(( ($(date +%s%N) - started) / 1000000 ))
+  echo "one validate (--jobs 2): $single_ms ms; the array (4 shards, 2 at once, --jobs 1) and its merge, from submit to the merge's end: $array_ms ms"
   echo "array tasks: $(states "$array" | tr '\n' ';') most running at once: $most"
   [ "$most" -eq 2 ] || fail "expected 2 shards running at once, saw at most $most"
   [ "$(states "$array" | grep -vc '^COMPLETED 0:0$')" -eq 0 ] || fail "a task did not complete"
