@@ -69,6 +69,7 @@ make_base_root() {
     rm -rf "$staging"
     unavailable "debootstrap of $suite from $mirror failed: $(tail -n 1 "$cache/debootstrap.log")"
   fi
+  chmod 755 "$staging"  # the root's own mode is stored in the tarball ("./")
   tar -C "$staging" -cf "$tarball.tmp" . && mv "$tarball.tmp" "$tarball"
   rm -rf "$staging"
 }
@@ -85,7 +86,6 @@ fi
 [ -s "$tarball" ] || make_base_root
 
 root=$(mktemp -d /tmp/acetate-fresh.XXXXXX)
-chmod 755 "$root"  # it becomes "/": mktemp's 0700 would stop every user but root at the top
 mounts=(proc sys dev/pts dev var/cache/apt/archives)
 cleanup() {
   local m
@@ -97,6 +97,10 @@ trap 'exit 130' INT
 trap 'exit 143' TERM
 
 tar -C "$root" -xf "$tarball"
+# It becomes "/", which every user must be able to enter (a package's postinst runs commands as
+# its own user: munge's does). Set after unpacking: the tarball's "./" carries the 0700 of the
+# staging folder mktemp made, and tar gives it to the root.
+chmod 755 "$root"
 cp /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
 mkdir -p "$root/root/project" "$root/var/cache/apt/archives" "$cache/apt-archives"
 git -C "$top" archive HEAD | tar -x -C "$root/root/project"

@@ -3,8 +3,8 @@
 #   1. not root: exit 125 and one line saying so;
 #   2. no mirror reachable: exit 125 and one line naming the mirror;
 #   3. with a cached root (a tiny one made here from this machine's bash): the command runs in
-#      it, sees only the committed files and CI=true, its exit status comes back unchanged, and
-#      nothing stays mounted or on disk.
+#      it, sees only the committed files and CI=true and a "/" every user may enter, its exit
+#      status comes back unchanged, and nothing stays mounted or on disk.
 # Cases 2 and 3 need root (mount, chroot); when not root they are reported as not run and the
 # test fails unless ACETATE_ALLOW_NONROOT_SKIP=1, so CI (root) never passes them silently.
 #
@@ -81,17 +81,20 @@ fi
 # ---- 3. A cached root: status passed through, committed files only ----
 mini=$work/mini
 mkdir -p "$mini"/{proc,sys,dev,etc,tmp}
-for binary in /bin/bash /usr/bin/env; do
+for binary in /bin/bash /usr/bin/env /usr/bin/stat; do
   cp --parents -L "$binary" "$mini"
   ldd "$binary" | grep -oE '/[^ ]+' | while read -r lib; do cp --parents -L "$lib" "$mini"; done
 done
 mkdir -p "$work/cache"
+# As debootstrap's staging folder from mktemp is: the tarball's "./" says 0700, which must not
+# become the fresh root's "/" (no user but root could enter it; munge's postinst failed so).
+chmod 700 "$mini"
 tar -C "$mini" -cf "$work/cache/bookworm-minbase.tar" .
 
 before=$(ls -d /tmp/acetate-fresh.* 2>/dev/null | sort || true)
 status=0
 (cd "$repo" && ACETATE_FRESH_CACHE=$work/cache bash "$work/fresh-machine.sh" -- bash -c \
-  'test -f committed.txt && test ! -e untracked.txt && test "$CI" = true && test "$PWD" = /root/project && exit 7' \
+  'test -f committed.txt && test ! -e untracked.txt && test "$CI" = true && test "$PWD" = /root/project && test "$(stat -c %a /)" = 755 && exit 7' \
   >"$work/out" 2>"$work/err") || status=$?
 if [ "$status" -eq 7 ]; then
   pass "cached root: the command's exit status 7 came back; it saw only committed files and CI=true"
