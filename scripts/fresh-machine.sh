@@ -105,7 +105,9 @@ cp /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
 mkdir -p "$root/root/project" "$root/var/cache/apt/archives" "$cache/apt-archives"
 git -C "$top" archive HEAD | tar -x -C "$root/root/project"
 mount -t proc proc "$root/proc"
-mount --bind /sys "$root/sys"
+# Recursive, as on a machine: what is mounted under /sys (the cgroup tree slurmd needs) too.
+# The lazy unmount in cleanup() detaches the whole tree.
+mount --rbind /sys "$root/sys"
 mount --bind /dev "$root/dev"
 mount --bind /dev/pts "$root/dev/pts"
 mount --bind "$cache/apt-archives" "$root/var/cache/apt/archives"

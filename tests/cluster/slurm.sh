@@ -44,7 +44,8 @@ start() {
   mkdir -p "$home/state" "$home/spool"
   mungekey --create --keyfile="$home/munge.key"
   chmod 600 "$home/munge.key"
-  munged --key-file="$home/munge.key" --socket="$home/munge.socket" \
+  # The origin is given: a root without /etc/hosts cannot look up its own name.
+  munged --key-file="$home/munge.key" --socket="$home/munge.socket" --origin=127.0.0.1 \
     --pid-file="$home/munged.pid" --log-file="$home/munged.log" --seed-file="$home/munged.seed"
   local controller_port node_port cpus
   controller_port=$(free_port)
@@ -83,8 +84,19 @@ PartitionName=acetate Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 CONF
   printf 'ACETATE_SLURM_HOME=%s\nSLURM_CONF=%s\n' "$home" "$home/slurm.conf" > "$env_file"
   export SLURM_CONF=$home/slurm.conf
-  slurmctld -f "$SLURM_CONF"
-  slurmd -f "$SLURM_CONF" -N acetate-node
+  # A daemon that does not start is one line naming it, then the end of its log.
+  local daemon
+  for daemon in slurmctld slurmd; do
+    local args=(-f "$SLURM_CONF")
+    [ "$daemon" = slurmd ] && args+=(-N acetate-node)
+    "$daemon" "${args[@]}" || {
+      echo "slurm.sh: $daemon did not start; the end of $home/$daemon.log:" >&2
+      tail -n 5 "$home/$daemon.log" >&2 || true
+      [ -d /sys/fs/cgroup ] || echo "slurm.sh: (slurmd needs the cgroup file system at /sys/fs/cgroup)" >&2
+      stop
+      exit 1
+    }
+  done
   for _ in $(seq 300); do
     [ "$(sinfo -h -o %t 2>/dev/null)" = idle ] && { echo "slurm.sh: one node, $cpus CPUs, up ($home)"; return 0; }
     sleep 0.1
