@@ -242,9 +242,10 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
                               fmt::format("{}: {}: pass \"{}\": {}", file, ref.where, runtime.label,
                                           pipeline.error().message));
         runtime.pipeline = pipeline.value();
-        auto uniforms =
-            GpuBuffer::create(context, effect_uniform_bytes(d.params.size(), graph->phases.size()),
-                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        auto uniforms = GpuBuffer::create(
+            context, effect_uniform_bytes(d.params.size(), graph->phases.size()),
+            // binding 0 for SPIR-V modules, kFrameStorageBinding for GLSL
+            VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
         if (!uniforms) return uniforms.error();
         runtime.uniforms = std::move(uniforms.value());
         std::memset(runtime.uniforms.mapped(), 0, runtime.uniforms.size());

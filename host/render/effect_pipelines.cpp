@@ -83,12 +83,19 @@ std::string checked_builtins_glsl() {
 }
 
 std::string effect_glsl_preamble(const EffectDescriptor& effect, const GraphPass& pass,
-                                 const std::vector<GraphPhase>& phases, bool checked_builtins) {
+                                 const std::vector<GraphPhase>& phases, bool checked_builtins,
+                                 FrameBlockDeclaration frame) {
     // The block only grows at its end (after acetate_params), so a plugin that gives a whole
-    // SPIR-V module declaring the ABI 1.0 block still reads the same offsets.
-    std::string out =
-        "#version 450\n"
-        "layout(set = 0, binding = 0, std140) uniform AcetateFrame {\n"
+    // SPIR-V module declaring the ABI 1.0 block still reads the same offsets. Both declarations
+    // have the same std140 layout; see kFrameStorageBinding for why GLSL passes get storage.
+    std::string out = "#version 450\n";
+    out +=
+        frame == FrameBlockDeclaration::Storage
+            ? fmt::format("layout(set = 0, binding = {}, std140) readonly buffer AcetateFrame {{\n",
+                          EffectPipelines::kFrameStorageBinding)
+            : fmt::format("layout(set = 0, binding = {}, std140) uniform AcetateFrame {{\n",
+                          EffectPipelines::kFrameBinding);
+    out +=
         "    vec4 acetate_canvas;   // width, height, 1/width, 1/height\n"
         "    vec4 acetate_output;   // this pass's output: width, height, 1/width, 1/height\n"
         "    vec4 acetate_misc;     // time (s), floor index (-1: global)\n";
@@ -144,11 +151,11 @@ std::string effect_glsl_preamble(const EffectDescriptor& effect, const GraphPass
 
 std::string effect_glsl_preamble(const EffectDescriptor& effect,
                                  const std::vector<std::string>& inputs, uint32_t kind,
-                                 bool checked_builtins) {
+                                 bool checked_builtins, FrameBlockDeclaration frame) {
     GraphPass pass;
     pass.inputs = inputs;
     pass.kind = kind;
-    return effect_glsl_preamble(effect, pass, {}, checked_builtins);
+    return effect_glsl_preamble(effect, pass, {}, checked_builtins, frame);
 }
 
 size_t effect_clock_float(size_t params) {
@@ -173,6 +180,7 @@ Result<std::unique_ptr<EffectPipelines>> EffectPipelines::create(VulkanContext& 
     bindings.push_back({kFloorDataBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr});
     bindings.push_back({kLightsBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
                         VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    bindings.push_back({kFrameStorageBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr});
     VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     set_info.bindingCount = uint32_t(bindings.size());

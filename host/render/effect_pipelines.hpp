@@ -1,10 +1,10 @@
 #pragma once
 // What every effect pass shares: one pipeline layout (a push-descriptor set with the frame
 // uniforms at binding 0, up to 8 inputs at bindings 1..8, floor_data at binding 9, the lights
-// at binding 10), a linear
-// clamp-to-edge sampler, and stand-ins for inputs a floor lacks (a transparent 1x1 texture for
-// a missing mask, a 4-float buffer for missing floor data). Pipelines live in the PipelinePool,
-// keyed by the SPIR-V's SHA-256, the output format and the blend.
+// at binding 10, the frame uniforms again at binding 11), a linear clamp-to-edge sampler, and
+// stand-ins for inputs a floor lacks (a transparent 1x1 texture for a missing mask, a 4-float
+// buffer for missing floor data). Pipelines live in the PipelinePool, keyed by the SPIR-V's
+// SHA-256, the output format and the blend.
 
 #include <vulkan/vulkan.h>
 
@@ -29,6 +29,12 @@ class EffectPipelines {
     static constexpr uint32_t kFirstInputBinding = 1;
     static constexpr uint32_t kFloorDataBinding = 9;
     static constexpr uint32_t kLightsBinding = 10;  // ABI 1.1: the floor's lights
+    // The same frame block as binding 0, as a read-only storage buffer: what the GLSL preamble
+    // and the instanced-quad vertex shader declare. Mesa 22.3's lavapipe inlines uniform-buffer
+    // values that branch conditions read and compiles (and keeps) a new shader variant at every
+    // draw, which grew the host by 1.8 MiB a frame with the water effect; storage-buffer loads
+    // are never inlined. Binding 0 stays the documented block for whole SPIR-V modules.
+    static constexpr uint32_t kFrameStorageBinding = 11;
 
     static Result<std::unique_ptr<EffectPipelines>> create(VulkanContext& context,
                                                            PipelinePool& pool);
@@ -80,6 +86,11 @@ struct EffectLightGpu {
 };
 static_assert(sizeof(EffectLightGpu) == 48);
 
+// How the preamble declares AcetateFrame: as GLSL passes read it (the storage buffer at
+// kFrameStorageBinding), or as the uniform block at binding 0 that effect.h documents for whole
+// SPIR-V modules (tests compile their stand-ins for shipped SPIR-V with it).
+enum class FrameBlockDeclaration { Storage, Uniform };
+
 // The GLSL the host puts before a pass's source: version, the AcetateFrame block with a
 // param_<name> macro per parameter and phase_<name> per phase, one sampler2D per input (named
 // as the pass chose) with its acetate_size_<name>, floor_data, the lights block, out_color.
@@ -87,11 +98,13 @@ static_assert(sizeof(EffectLightGpu) == 48);
 // the pass's own text are the checked ones. Then the pass's defines and `#line 1`.
 std::string effect_glsl_preamble(const EffectDescriptor& effect, const GraphPass& pass,
                                  const std::vector<GraphPhase>& phases,
-                                 bool checked_builtins = false);
+                                 bool checked_builtins = false,
+                                 FrameBlockDeclaration frame = FrameBlockDeclaration::Storage);
 // The same for a pass with default input names and no phases (tests).
 std::string effect_glsl_preamble(const EffectDescriptor& effect,
                                  const std::vector<std::string>& inputs, uint32_t kind,
-                                 bool checked_builtins = false);
+                                 bool checked_builtins = false,
+                                 FrameBlockDeclaration frame = FrameBlockDeclaration::Storage);
 
 // GLSL that replaces min, max, clamp and smoothstep in the text after it with versions that
 // return NaN where a floating-point operand is NaN, and smoothstep also where edge0 >= edge1

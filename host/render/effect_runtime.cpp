@@ -131,14 +131,17 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
         VkDescriptorBufferInfo data{instance.has_floor_data ? instance.floor_data.buffer()
                                                             : pipelines.empty_buffer().buffer(),
                                     0, VK_WHOLE_SIZE};
-        // The frame uniforms, every input binding, the floor data and the lights.
-        std::array<VkWriteDescriptorSet, EffectPipelines::kMaxInputs + 3> writes{};
+        // The frame uniforms (twice), every input binding, the floor data and the lights.
+        std::array<VkWriteDescriptorSet, EffectPipelines::kMaxInputs + 4> writes{};
         size_t count = 0;
         VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         write.descriptorCount = 1;
         write.dstBinding = EffectPipelines::kFrameBinding;
         write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
         write.pBufferInfo = &frame;
+        writes[count++] = write;
+        write.dstBinding = EffectPipelines::kFrameStorageBinding;  // the same bytes, for GLSL
+        write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         writes[count++] = write;
         for (uint32_t i = 0; i < EffectPipelines::kMaxInputs; ++i) {
             write = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};

@@ -1,7 +1,9 @@
 #version 450
 // Effect passes of kind ACETATE_PASS_INSTANCED_QUADS: quad i covers the scene rect
 // floor_data[offset + 4i .. +3] = (x, y, width, height), offset in acetate_misc.z.
-layout(set = 0, binding = 0, std140) uniform AcetateFrame {
+// The frame block at binding 11, read as storage like the GLSL passes read it (see
+// EffectPipelines::kFrameStorageBinding); binding 0 holds the same bytes as a uniform block.
+layout(set = 0, binding = 11, std140) readonly buffer AcetateFrame {
     vec4 acetate_canvas;
     vec4 acetate_output;
     vec4 acetate_misc;

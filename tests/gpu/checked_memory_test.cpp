@@ -270,7 +270,8 @@ TEST_F(CheckedMemory, PassesGivenAsSpirvAreCountedApartAndRunUnchecked) {
     ASSERT_TRUE(plugin.ok()) << plugin.error().message;
     auto spirv = compile_glsl(
         "gain", ShaderStage::Fragment,
-        effect_glsl_preamble(plugin.value()->descriptor, {"previous"}, ACETATE_PASS_FULLSCREEN) +
+        effect_glsl_preamble(plugin.value()->descriptor, {"previous"}, ACETATE_PASS_FULLSCREEN,
+                             false, FrameBlockDeclaration::Uniform) +
             "void main() { vec4 c = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);\n"
             "              out_color = vec4(c.rgb * param_gain, c.a); }\n");
     ASSERT_TRUE(spirv.ok()) << spirv.error().message;

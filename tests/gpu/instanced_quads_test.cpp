@@ -78,7 +78,7 @@ namespace {
 
 TEST_F(RenderTest, APassGivenAsSpirvRunsLikeItsGlsl) {
     // Compile the plugin's pass the way a plugin author would ship it: the host's declarations
-    // for this effect, then the body, to SPIR-V.
+    // for this effect with the uniform block effect.h documents for SPIR-V, then the body.
     auto plugin = renderer().plugins().load("test.spirv_pass");
     ASSERT_TRUE(plugin.ok()) << plugin.error().message;
     const std::string body =
@@ -86,7 +86,8 @@ TEST_F(RenderTest, APassGivenAsSpirvRunsLikeItsGlsl) {
         "              out_color = vec4(c.rgb * param_gain, c.a); }\n";
     auto spirv = compile_glsl(
         "gain", ShaderStage::Fragment,
-        effect_glsl_preamble(plugin.value()->descriptor, {"previous"}, ACETATE_PASS_FULLSCREEN) +
+        effect_glsl_preamble(plugin.value()->descriptor, {"previous"}, ACETATE_PASS_FULLSCREEN,
+                             false, FrameBlockDeclaration::Uniform) +
             body);
     ASSERT_TRUE(spirv.ok()) << spirv.error().message;
     const auto file = dir() / "gain.spv";
