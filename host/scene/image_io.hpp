@@ -8,6 +8,7 @@
 
 #include "core/image_rgba.hpp"
 #include "core/result.hpp"
+#include "scene/srgb.hpp"  // the transfer curve the files use
 
 namespace acetate {
 
@@ -25,10 +26,6 @@ Result<ImageRGBA> load_image(const std::filesystem::path& file, ImageRole role);
 // straight alpha (un-premultiplied safely: no division at alpha that rounds to 0 in 8 bits, no
 // NaN). The file is written to a temporary name and renamed, so a reader never sees half a file.
 Result<void> save_image(const std::filesystem::path& file, const ImageRGBA& image);
-
-// Colour transfer helpers, exposed for tests (IEC 61966-2-1 piecewise sRGB curve).
-float srgb_to_linear(float encoded);
-float linear_to_srgb(float linear);
 
 // Converts premultiplied linear RGBA to straight-alpha 8-bit sRGB (what `.png` holds).
 // Where the 8-bit alpha is 0 the colour is 0; colour is clamped to [0, 1] before encoding.
