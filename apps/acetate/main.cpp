@@ -6,6 +6,7 @@
 #include "../flag_values.hpp"
 #include "core/number_text.hpp"
 #include "render_command.hpp"
+#include "time_list.hpp"
 
 int main(int argc, char** argv) {
     CLI::App app{"Acetate: a headless Vulkan compositor for layered 2D scenes"};
@@ -38,9 +39,16 @@ int main(int argc, char** argv) {
     cmd->add_option("--plugin-path", render.plugin_paths,
                     "Directory to search for effect plugins first (repeatable); then "
                     "ACETATE_PLUGIN_PATH, then the installation's lib/acetate/plugins");
-    acetate::flags::add_number(cmd, "--time", render.time, -acetate::flags::kMaxTimeSeconds,
-                               acetate::flags::kMaxTimeSeconds,
-                               "Time in seconds that effects animate with");
+    auto* time = acetate::flags::add_number(
+        cmd, "--time", render.time, -acetate::flags::kMaxTimeSeconds,
+        acetate::flags::kMaxTimeSeconds, "Time in seconds that effects animate with");
+    std::string times_list;
+    cmd->add_option(
+           "--times", times_list,
+           "Times to render each floor at in one process: a list (0,0.5,2) or "
+           "START:END:STEP with the end included, each S or N/D (0:11/12:1/12); writes OUT with "
+           ".frameNNNN (the time's index) before the extension")
+        ->excludes(time);
     cmd->add_flag("!--no-pipeline-cache", render.pipeline_cache,
                   "Do not read or write the pipeline cache in the user cache directory");
     cmd->add_option("--registry", render.registry,
@@ -56,6 +64,11 @@ int main(int argc, char** argv) {
 
     try {
         app.parse(argc, argv);
+        if (cmd->count("--times") > 0) {
+            auto times = acetate::parse_render_times(times_list, acetate::flags::kMaxTimeSeconds);
+            if (!times) throw CLI::ValidationError(times.error().message);
+            render.times = std::move(times.value());
+        }
         if (floors_list == "all") {
             render.all_floors = true;
         } else if (cmd->count("--floors") > 0) {

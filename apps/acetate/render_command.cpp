@@ -38,17 +38,30 @@ std::vector<uint32_t> floors_to_render(const RenderCommand& command, const host:
     return floors;
 }
 
-// Every file the run will write: one image per scene and floor, and the statistics.
+// The times each floor is rendered at: --times, or --time alone.
+std::vector<double> times_to_render(const RenderCommand& command) {
+    return command.times.empty() ? std::vector<double>{command.time} : command.times;
+}
+
+// Where frame (scene s, floor f, time index t) goes.
+std::filesystem::path output_of(const RenderCommand& command, size_t scenes, size_t s,
+                                size_t floors, uint32_t floor, size_t times, size_t t) {
+    return time_output_path(
+        frame_output_path(scene_output_path(command.output, s, scenes > 1), floor, floors > 1), t,
+        times > 1);
+}
+
+// Every file the run will write: one image per scene, floor and time, and the statistics.
 std::vector<RunFile> run_outputs(const RenderCommand& command,
                                  const std::vector<host::SceneInfo>& scenes) {
     std::vector<RunFile> out;
-    const bool several_scenes = scenes.size() > 1;
+    const size_t times = times_to_render(command).size();
     for (size_t s = 0; s < scenes.size(); ++s) {
         const std::vector<uint32_t> floors = floors_to_render(command, scenes[s]);
         for (uint32_t f : floors)
-            out.push_back({frame_output_path(scene_output_path(command.output, s, several_scenes),
-                                             f, floors.size() > 1),
-                           "-o"});
+            for (size_t t = 0; t < times; ++t)
+                out.push_back(
+                    {output_of(command, scenes.size(), s, floors.size(), f, times, t), "-o"});
     }
     if (command.stats) out.push_back({*command.stats, "--stats"});
     return out;
@@ -93,6 +106,11 @@ std::filesystem::path frame_output_path(const std::filesystem::path& output, uin
 std::filesystem::path scene_output_path(const std::filesystem::path& output, size_t scene,
                                         bool several) {
     return several ? with_suffix(output, fmt::format(".scene{}", scene)) : output;
+}
+
+std::filesystem::path time_output_path(const std::filesystem::path& output, size_t index,
+                                       bool several) {
+    return several ? with_suffix(output, fmt::format(".frame{:04}", index)) : output;
 }
 
 int run_render(const RenderCommand& command) {
@@ -143,7 +161,6 @@ int run_render(const RenderCommand& command) {
     std::printf("device: %s\n", acetate_host.device_name().c_str());
 
     nlohmann::json scene_reports = nlohmann::json::array();
-    const bool several_scenes = scenes.size() > 1;
     int failed_scenes = 0;
     for (size_t s = 0; s < scenes.size(); ++s) {
         const std::string scene_name = scenes[s].file.string();
@@ -165,24 +182,31 @@ int run_render(const RenderCommand& command) {
             (unsigned long long)load.pipelines_created);
 
         const std::vector<uint32_t> floors = floors_to_render(command, scenes[s]);
+        const std::vector<double> times = times_to_render(command);
+        const size_t total = floors.size() * times.size();
         nlohmann::json frames = nlohmann::json::array();
-        for (size_t i = 0; i < floors.size(); ++i) {
-            if (auto set = (*scene)->set_active_floor(floors[i]); !set)
+        for (size_t i = 0; i < total; ++i) {
+            const uint32_t floor = floors[i / times.size()];
+            const size_t t = i % times.size();
+            if (auto set = (*scene)->set_active_floor(floor); !set)
                 return fail(set.error().message);
-            if (auto set = (*scene)->set_time(command.time); !set) return fail(set.error().message);
+            if (auto set = (*scene)->set_time(times[t]); !set) return fail(set.error().message);
             auto stats = (*scene)->render();
             if (!stats) return fail(stats.error().message);
-            const auto path = frame_output_path(
-                scene_output_path(command.output, s, several_scenes), floors[i], floors.size() > 1);
+            const auto path =
+                output_of(command, scenes.size(), s, floors.size(), floor, times.size(), t);
             if (auto written = (*scene)->write_frame(path); !written)
                 return fail(written.error().message);
             std::printf(
-                "[%zu/%zu] floor %u: %.2f ms, %u passes, %llu pixels shaded, %llu "
+                "[%zu/%zu] floor %u%s: %.2f ms, %u passes, %llu pixels shaded, %llu "
                 "violations -> %s\n",
-                i + 1, floors.size(), floors[i], stats->milliseconds, stats->passes,
-                (unsigned long long)stats->pixels_shaded, (unsigned long long)stats->violations,
-                path.string().c_str());
-            frames.push_back(to_json(stats.value()));
+                i + 1, total, floor,
+                times.size() > 1 ? fmt::format(" at {} s", times[t]).c_str() : "",
+                stats->milliseconds, stats->passes, (unsigned long long)stats->pixels_shaded,
+                (unsigned long long)stats->violations, path.string().c_str());
+            nlohmann::json frame = to_json(stats.value());
+            frame["time"] = times[t];
+            frames.push_back(std::move(frame));
         }
         nlohmann::json targets = nlohmann::json::array();
         for (const host::ImageInfo& t : (*scene)->render_targets()) targets.push_back(to_json(t));

@@ -19,6 +19,9 @@ struct RenderCommand {
     std::optional<std::filesystem::path> stats;       // --stats FILE
     std::vector<std::filesystem::path> plugin_paths;  // --plugin-path DIR (repeatable)
     double time = 0;  // --time SECONDS: what effects animate with (double: smooth at 10^5 s)
+    // --times LIST|START:END:STEP: render each floor at each of these instead, in one process
+    // (time_list.hpp); writes OUT with the time's index before the extension.
+    std::vector<double> times;
     bool pipeline_cache = true;  // --no-pipeline-cache turns the disk cache off
     // Host load policy (docs/registry.md, "Host policy"): a plugin is loaded only if the
     // registry has it VALIDATED for its exact binary.
@@ -41,5 +44,9 @@ std::filesystem::path frame_output_path(const std::filesystem::path& output, uin
 // With several scenes, `.sceneK` goes before the floor part (`out.scene2.floor1.png`).
 std::filesystem::path scene_output_path(const std::filesystem::path& output, size_t scene,
                                         bool several);
+// With several times, `.frameNNNN` (the time's index in --times, four digits or more) goes
+// after the floor part (`out.floor1.frame0003.png`).
+std::filesystem::path time_output_path(const std::filesystem::path& output, size_t index,
+                                       bool several);
 
 }  // namespace acetate

@@ -1,6 +1,6 @@
 // End-to-end tests of the `acetate` binary's outputs: `--floors` names one file per floor,
-// `--stats` reports what the binding documents, and the bundled example renders cleanly in
-// every view, to PNG and EXR.
+// `--times` one per time, `--stats` reports what the binding documents, and the bundled example
+// renders cleanly in every view, to PNG and EXR.
 //
 // Every run has Vulkan validation on (ACETATE_VALIDATION=1) and must print no validation line.
 
@@ -68,6 +68,62 @@ TEST(CliFloors, SingleFloorWritesTheOutputItself) {
     expect_success(run);
     EXPECT_TRUE(fs::exists(dir / "out.png")) << run.describe();
     EXPECT_FALSE(fs::exists(dir / "out.floor0.png"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// --times: one process renders a floor at several times
+
+fs::path fire_quay_scene() {
+    return fs::path(ACETATE_EXAMPLES_DIR).parent_path() / "validation" / "references" /
+           "acetate.fire" / "scenes" / "quay.json";
+}
+
+TEST(CliTimes, OneFilePerTimeEachAsASeparateRunAtThatTimeWouldWrite) {
+    const fs::path dir = test::scratch_dir();
+    const std::string scene = test::shell_quote(fire_quay_scene().string());
+    const CliRun run = run_acetate(dir, "render " + scene +
+                                            " -o anim.png --times 0:1:1/2 --stats stats.json "
+                                            "--allow-unvalidated");
+    expect_success(run);
+    for (const char* name : {"anim.frame0000.png", "anim.frame0001.png", "anim.frame0002.png"})
+        EXPECT_TRUE(fs::exists(dir / name)) << name << "\n" << run.describe();
+    EXPECT_FALSE(fs::exists(dir / "anim.png"));
+    EXPECT_FALSE(fs::exists(dir / "anim.frame0003.png"));
+    json stats;
+    ASSERT_NO_THROW(stats = json::parse(test::read_file(dir / "stats.json")));
+    ASSERT_EQ(stats.at("frames").size(), 3u);
+    EXPECT_EQ(stats["frames"][0].at("time"), 0.0);
+    EXPECT_EQ(stats["frames"][1].at("time"), 0.5);
+    EXPECT_EQ(stats["frames"][2].at("time"), 1.0);
+    // Each frame is a pure function of its time: the same bytes as a process of its own.
+    const CliRun alone =
+        run_acetate(dir, "render " + scene + " -o alone.png --time 0.5 --allow-unvalidated");
+    expect_success(alone);
+    EXPECT_EQ(test::read_file(dir / "alone.png"), test::read_file(dir / "anim.frame0001.png"));
+    // The fire moves: the frames are not all one picture.
+    EXPECT_NE(test::read_file(dir / "anim.frame0000.png"),
+              test::read_file(dir / "anim.frame0001.png"));
+}
+
+TEST(CliTimes, ABadListIsOneLineAndWritesNothing) {
+    const fs::path dir = write_scene();
+    for (const auto& [times, expected] : std::vector<std::pair<std::string, std::string>>{
+             {"0:1:0", "--times: step \"0\": must be above 0"},
+             {"1:0:1", "--times: the range ends (0) before it starts (1)"},
+             {"0,nan", "--times: must be a finite number, got \"nan\""},
+             {"0:1:1/0", "the divisor must be above 0"},
+             {"0:1:1/2/3", "expected S or N/D"},
+             {"0:1e9:1", "at most 100000 in one run"},
+             {"0:1", "expected START:END:STEP"}}) {
+        SCOPED_TRACE(times);
+        const CliRun run = run_acetate(dir, "render scene.json -o out.png --times " + times);
+        EXPECT_EQ(run.code, 2) << run.describe();
+        expect_refused(run, {expected});
+    }
+    const CliRun both = run_acetate(dir, "render scene.json -o out.png --times 0,1 --time 1");
+    EXPECT_EQ(both.code, 2) << both.describe();
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+    EXPECT_FALSE(fs::exists(dir / "out.frame0000.png"));
 }
 
 // ---------------------------------------------------------------------------------------------
