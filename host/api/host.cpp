@@ -47,6 +47,7 @@ Result<std::unique_ptr<Scene::Loaded>> load(const std::shared_ptr<Host::State>& 
     auto compositor = Compositor::load(*host->renderer, loaded->desc, options);
     if (!compositor) return error_of(compositor.error());
     loaded->compositor = std::move(compositor.value());
+    loaded->options = options;
     const LoadStats& s = loaded->compositor->load_stats();
     loaded->load = {s.milliseconds,     s.images_loaded,     s.targets_allocated,
                     s.shaders_compiled, s.pipelines_created, s.tile_texel_violations};

@@ -27,6 +27,7 @@ struct Scene::Loaded {
     std::shared_ptr<Host::State> host;
     SceneDesc desc;
     std::unique_ptr<Compositor> compositor;
+    CompositorOptions options;  // what it was loaded with (a live change may load it again)
     LoadStatistics load;
     uint32_t active_floor = 0;
     double time = 0;

@@ -2,7 +2,9 @@
 // time, and its statistics in the API's own types.
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "api/host_internal.hpp"
@@ -31,7 +33,61 @@ std::vector<ImageInfo> infos_of(const std::vector<TargetInfo>& targets) {
     return out;
 }
 
+// Gives one effect of the scene the entry `edit` makes of its current one: in place when its
+// build() declares the same graph, else by loading the scene again with it (the old scene
+// keeps rendering if that load fails).
+Result<ParamChange> change_effect(Scene::Loaded& loaded, const EffectSlot& slot,
+                                  const std::function<void(EffectRef&)>& edit) {
+    const auto start = std::chrono::steady_clock::now();
+    const SceneDesc& current = loaded.compositor->scene();
+    const std::vector<EffectRef>* refs = &current.global_effects;
+    if (slot.floor) {
+        if (*slot.floor >= current.floors.size())
+            return Error{fmt::format("{}: floor {} does not exist (floors 0..{})",
+                                     current.file.string(), *slot.floor,
+                                     current.floors.size() - 1)};
+        refs = &current.floors[*slot.floor].effects;
+    }
+    if (slot.index >= refs->size())
+        return Error{fmt::format(
+            "{}: {}: no effect {} (it lists {})", current.file.string(),
+            slot.floor ? fmt::format("floors[{}].effects", *slot.floor) : "global_effects",
+            slot.index, refs->size())};
+    EffectRef ref = (*refs)[slot.index];
+    edit(ref);
+    auto in_place = loaded.compositor->set_effect_ref(slot.floor, slot.index, ref);
+    if (!in_place) return error_of(in_place.error());
+    ParamChange change;
+    if (!in_place.value()) {
+        SceneDesc desc = current;
+        (slot.floor ? desc.floors[*slot.floor].effects : desc.global_effects)[slot.index] = ref;
+        auto compositor = Compositor::load(*loaded.host->renderer, desc, loaded.options);
+        if (!compositor) return error_of(compositor.error());
+        loaded.compositor = std::move(compositor.value());
+        loaded.desc = std::move(desc);
+        loaded.rendered = false;  // read_frame() wants a frame of this scene
+        change.reloaded = true;
+    }
+    change.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return change;
+}
+
 }  // namespace
+
+Result<ParamChange> Scene::set_param(const EffectSlot& effect, const std::string& name,
+                                     const std::vector<float>& value) {
+    return change_effect(*loaded_, effect, [&](EffectRef& ref) {
+        // As the scene file would say it: a number, or an array of 2 or 3.
+        ref.params[name] = value.size() == 1
+                               ? nlohmann::json(double(value[0]))
+                               : nlohmann::json(std::vector<double>(value.begin(), value.end()));
+    });
+}
+
+Result<ParamChange> Scene::set_preset(const EffectSlot& effect, const std::string& preset) {
+    return change_effect(*loaded_, effect, [&](EffectRef& ref) { ref.preset = preset; });
+}
 
 Scene::Scene(std::unique_ptr<Loaded> loaded) : loaded_(std::move(loaded)) {}
 // The compositor goes first: it uses the renderer and device the Loaded keeps alive.

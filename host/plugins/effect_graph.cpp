@@ -9,6 +9,7 @@
 #include <regex>
 #include <set>
 
+#include "core/sha256.hpp"
 #include "plugins/plugin_calls.hpp"
 
 // The host's side of the opaque handle the plugin receives.
@@ -488,6 +489,59 @@ Result<EffectGraph> build_effect_graph(const LoadedPlugin& plugin, const Acetate
                                           graph.graph.floor_data.size()));
     }
     return std::move(graph.graph);
+}
+
+std::string effect_graph_digest(const EffectGraph& graph) {
+    // Each field with its length first, so no two different graphs write the same bytes.
+    std::string bytes;
+    auto add_bytes = [&](const void* data, size_t size) {
+        bytes.append(reinterpret_cast<const char*>(&size), sizeof size);
+        bytes.append(static_cast<const char*>(data), size);
+    };
+    auto add_text = [&](const std::string& text) { add_bytes(text.data(), text.size()); };
+    auto add_number = [&](auto value) { add_bytes(&value, sizeof value); };
+    auto add_texts = [&](const std::vector<std::string>& texts) {
+        add_number(texts.size());
+        for (const std::string& t : texts) add_text(t);
+    };
+    add_number(graph.targets.size());
+    for (const GraphTarget& t : graph.targets) {
+        add_text(t.name);
+        add_number(t.divisor);
+        add_number(t.format);
+    }
+    add_number(graph.passes.size());
+    for (const GraphPass& p : graph.passes) {
+        add_text(p.name);
+        add_text(p.glsl);
+        add_bytes(p.spirv.data(), p.spirv.size() * sizeof(uint32_t));
+        add_texts(p.inputs);
+        add_text(p.output);
+        add_number(p.blend);
+        add_number(p.kind);
+        add_number(p.instance_count);
+        add_number(p.instance_data_offset);
+        add_texts(p.input_names);
+        add_text(p.defines);
+    }
+    add_number(graph.textures.size());
+    for (const GraphTexture& t : graph.textures) {
+        add_text(t.name);
+        add_number(t.width);
+        add_number(t.height);
+        add_number(t.format);
+        add_number(t.channels);
+        add_bytes(t.texels.data(), t.texels.size() * sizeof(float));
+    }
+    add_bytes(graph.floor_data.data(), graph.floor_data.size() * sizeof(float));
+    add_number(graph.phases.size());
+    for (const GraphPhase& p : graph.phases) {
+        add_text(p.name);
+        add_number(p.period);
+    }
+    add_number(graph.reach.has_value());
+    add_number(graph.reach.value_or(0));
+    return sha256_hex(bytes);
 }
 
 }  // namespace acetate

@@ -79,6 +79,11 @@ std::string input_variable(const std::string& input);
 // The name of an ACETATE_FORMAT_* value ("RG16F"), or "" for an unknown one.
 std::string format_name(uint32_t format);
 
+// A digest of everything the graph declares (targets, passes with their code, textures with
+// their texels, floor data, phases, reach), not its log: two builds with equal digests need the
+// same GPU objects, so only the parameter values can differ between them.
+std::string effect_graph_digest(const EffectGraph& graph);
+
 // Calls the plugin's build() for one instance and returns what it declared, checked.
 // `label` names the instance in errors ("floor2.acetate.lighting", "global.acetate.bloom").
 Result<EffectGraph> build_effect_graph(const LoadedPlugin& plugin, const AcetateFloorInfo& floor,

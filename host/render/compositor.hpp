@@ -8,7 +8,8 @@
 // Its files, one job each: compositor_load.cpp (load: effects, masks, targets, pipelines, the
 // planner's geometry), compositor_warm_up.cpp (every pipeline drawn once at load),
 // floor_recording.cpp (a frame's commands: floors, composites, global effects, the output),
-// compositor.cpp (render(), read-backs and what it holds). Its targets are a FrameTargets, its
+// compositor.cpp (render(), read-backs and what it holds), compositor_params.cpp (live
+// parameters). Its targets are a FrameTargets, its
 // output views are in output_view.hpp, the Vulkan commands it records in
 // vulkan/render_commands.hpp.
 
@@ -114,6 +115,17 @@ class Compositor {
     // the frame clear and draw the active floor's whole target; InvalidInput otherwise.
     Result<ImageRGBA> read_active_floor();
 
+    // Live parameters (compositor_params.cpp): gives effect `index` of floor `floor` (empty: of
+    // the global effects), counted in the scene's own list, the entry `ref` (the scene's entry
+    // with other params or another preset). Its build() runs again; when it declares the same
+    // graph, later frames use the new values and nothing is allocated or compiled: returns
+    // true. When it declares another graph, nothing changes and it returns false: the caller
+    // loads the scene again with `ref` in it. Refusals (no such effect, a parameter refused,
+    // build() failing) name the scene file and the effect's field and change nothing.
+    Result<bool> set_effect_ref(std::optional<uint32_t> floor, uint32_t index,
+                                const EffectRef& ref);
+    const SceneDesc& scene() const { return scene_; }
+
     uint32_t floor_count() const { return uint32_t(resources_->floors().size()); }
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
@@ -202,6 +214,9 @@ class Compositor {
     std::string timer_warning_;
     bool effects_enabled_ = true;
     uint32_t global_effects_run_ = UINT32_MAX;  // how many of global_effects_ run
+    // The floors' mask composites for build() when set_effect_ref runs it again: composited
+    // from the files on the first such call that needs them, then kept (a load keeps none).
+    std::optional<SceneMasks> live_masks_;
 };
 
 }  // namespace acetate

@@ -33,9 +33,11 @@ Result<SceneMasks> Compositor::create_effects(const SceneDesc& scene) {
     floor_effects_.resize(scene.floors.size());
     for (size_t f = 0; f < scene.floors.size(); ++f) {
         setup.masks = &masks->floors[f];
-        for (const EffectRef& ref : scene.floors[f].effects) {
+        for (size_t i = 0; i < scene.floors[f].effects.size(); ++i) {
+            const EffectRef& ref = scene.floors[f].effects[i];
             auto instance = create_effect_instance(renderer_, scene, ref, int64_t(f), setup);
             if (!instance) return instance.error();
+            instance.value()->scene_index = i;
             // An instance that declared nothing (water on a floor without water) is dropped:
             // the floor then renders exactly as if the scene had not listed the effect.
             if (instance.value()->passes.empty()) continue;
@@ -43,9 +45,11 @@ Result<SceneMasks> Compositor::create_effects(const SceneDesc& scene) {
         }
     }
     setup.masks = nullptr;
-    for (const EffectRef& ref : scene.global_effects) {
-        auto instance = create_effect_instance(renderer_, scene, ref, -1, setup);
+    for (size_t i = 0; i < scene.global_effects.size(); ++i) {
+        auto instance =
+            create_effect_instance(renderer_, scene, scene.global_effects[i], -1, setup);
         if (!instance) return instance.error();
+        instance.value()->scene_index = i;
         if (instance.value()->passes.empty()) continue;
         global_effects_.push_back(std::move(instance.value()));
     }

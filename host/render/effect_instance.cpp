@@ -131,10 +131,9 @@ PixelRect floor_coverage_bounds(const SceneDesc& scene, size_t floor) {
     return bounds;
 }
 
-Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
-                                                               const SceneDesc& scene,
-                                                               const EffectRef& ref, int64_t floor,
-                                                               const InstanceSetup& setup) {
+Result<PreparedInstance> prepare_effect_instance(Renderer& renderer, const SceneDesc& scene,
+                                                 const EffectRef& ref, int64_t floor,
+                                                 const InstanceSetup& setup) {
     VulkanContext& context = renderer.context();
     const std::string file = scene.file.string();
     auto plugin = renderer.plugins().load(ref.plugin);
@@ -152,16 +151,18 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
     auto params = resolve_param_vectors(d, ref, file);
     if (!params) return params.error();
 
-    auto instance = std::make_unique<EffectInstance>();
-    instance->plugin = plugin.value();
-    instance->floor = floor;
-    instance->expanding = d.coverage == ACETATE_COVERAGE_EXPANDING;
-    instance->params = params.value();
-    instance->label = fmt::format(
+    PreparedInstance out;
+    out.instance = std::make_unique<EffectInstance>();
+    EffectInstance& instance = *out.instance;
+    instance.plugin = plugin.value();
+    instance.floor = floor;
+    instance.expanding = d.coverage == ACETATE_COVERAGE_EXPANDING;
+    instance.params = params.value();
+    instance.label = fmt::format(
         "{}.{}", floor < 0 ? std::string("global") : fmt::format("floor{}", floor), d.id);
 
     FloorFacts facts;
-    describe_floor(scene, floor, d, instance->params, facts);
+    describe_floor(scene, floor, d, instance.params, facts);
     GraphContext graph_context;
     graph_context.masks = setup.masks;
     graph_context.canvas_width = scene.width;
@@ -169,14 +170,31 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
     graph_context.format_problem = [&](uint32_t format, bool blend) {
         return format_problem(context, setup.format, format, blend);
     };
-    auto graph = build_effect_graph(*instance->plugin, facts.info, instance->label, graph_context);
+    auto graph = build_effect_graph(*instance.plugin, facts.info, instance.label, graph_context);
     if (!graph)
         return make_error(graph.error().code,
                           fmt::format("{}: {}: {}", file, ref.where, graph.error().message));
     for (const std::string& line : graph->log)
         std::fprintf(stderr, "acetate: log: %s\n", line.c_str());
-    instance->reach = graph->reach;
-    for (const GraphPhase& phase : graph->phases) instance->phase_periods.push_back(phase.period);
+    instance.reach = graph->reach;
+    for (const GraphPhase& phase : graph->phases) instance.phase_periods.push_back(phase.period);
+    instance.graph_digest = effect_graph_digest(graph.value());
+    out.graph = std::move(graph.value());
+    out.lights = std::move(facts.light_infos);
+    return out;
+}
+
+Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
+                                                               const SceneDesc& scene,
+                                                               const EffectRef& ref, int64_t floor,
+                                                               const InstanceSetup& setup) {
+    auto prepared = prepare_effect_instance(renderer, scene, ref, floor, setup);
+    if (!prepared) return prepared.error();
+    VulkanContext& context = renderer.context();
+    const std::string file = scene.file.string();
+    std::unique_ptr<EffectInstance> instance = std::move(prepared->instance);
+    const EffectGraph* graph = &prepared->graph;
+    const EffectDescriptor& d = instance->plugin->descriptor;
 
     for (const GraphTexture& t : graph->textures) {
         auto image =
@@ -260,9 +278,9 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
         instance->floor_data = std::move(buffer.value());
         instance->has_floor_data = true;
     }
-    if (!facts.light_infos.empty()) {
+    if (!prepared->lights.empty()) {
         std::vector<EffectLightGpu> lights;
-        for (const AcetateLightInfo& l : facts.light_infos)
+        for (const AcetateLightInfo& l : prepared->lights)
             lights.push_back({{l.pos[0], l.pos[1]},
                               l.height,
                               l.radius,

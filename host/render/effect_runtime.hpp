@@ -47,8 +47,10 @@ struct EffectPassRuntime {
 
 struct EffectInstance {
     std::shared_ptr<LoadedPlugin> plugin;
-    std::string label;   // "floor2.acetate.lighting" / "global.acetate.bloom"
-    int64_t floor = -1;  // -1: global
+    size_t scene_index = 0;    // its place in the scene's list (floor's effects, or global)
+    std::string graph_digest;  // effect_graph_digest of what build() declared
+    std::string label;         // "floor2.acetate.lighting" / "global.acetate.bloom"
+    int64_t floor = -1;        // -1: global
     bool expanding = false;
     ParamVectors params;                // resolved, clamped; 4 floats per parameter
     std::vector<double> phase_periods;  // declared phases (seconds), in declaration order
@@ -86,6 +88,20 @@ struct InstanceSetup {
     bool checked_builtins = false;      // compile GLSL with checked_builtins_glsl()
     const FloorMasks* masks = nullptr;  // the floor's mask composites, for read_mask
 };
+
+// An instance after its plugin's build() and before anything of it is on the GPU: what a live
+// parameter change compares (by graph_digest) with the running instance.
+struct PreparedInstance {
+    std::unique_ptr<EffectInstance> instance;  // plugin, params, label, reach, phases, digest
+    EffectGraph graph;
+    std::vector<AcetateLightInfo> lights;  // the floor's, as build() was told them
+};
+
+// Loads the plugin an EffectRef names and runs its build() for `floor` (-1: global): the
+// parameters resolved and checked, the graph checked. Allocates nothing on the device.
+Result<PreparedInstance> prepare_effect_instance(Renderer& renderer, const SceneDesc& scene,
+                                                 const EffectRef& ref, int64_t floor,
+                                                 const InstanceSetup& setup);
 
 // Loads the plugin an EffectRef names, builds its instance for `floor` (-1: global), compiles
 // its passes and allocates what they write.

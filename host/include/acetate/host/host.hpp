@@ -136,6 +136,21 @@ struct ImageInfo {
     uint64_t bytes = 0;
 };
 
+// One effect of a scene, as its file lists it: the `index`-th entry of floor `floor`'s
+// "effects", or of "global_effects" when `floor` is empty.
+struct EffectSlot {
+    std::optional<uint32_t> floor;
+    uint32_t index = 0;
+};
+
+// What a live change of an effect's parameters cost. Values that the effect's build() turns
+// into the same passes reach the next frame with nothing rebuilt; values that change its
+// passes (a bloom's number of levels) load the scene again, and `reloaded` says so.
+struct ParamChange {
+    bool reloaded = false;
+    double milliseconds = 0;
+};
+
 struct FrameStatistics {
     uint32_t active_floor = 0;
     double time = 0;             // seconds, as the effects saw it
@@ -222,6 +237,16 @@ class Scene {
     // outside the 32-bit float range (effects read it as a float).
     Result<void> set_time(double seconds);
     double time() const;
+
+    // Live parameters: the next frame renders as the scene file would with these values in
+    // the effect's "params" (a scalar has one value; a vector or colour two or three), or
+    // with that "preset" ("" for none). Values are clamped to the parameter's range as a
+    // file's are. Refusals change nothing and name the scene file, the effect's field and the
+    // parameter: no such floor or effect, an unknown parameter or preset, a value that is not
+    // finite or has the wrong number of components, or build() failing with the values.
+    Result<ParamChange> set_param(const EffectSlot& effect, const std::string& name,
+                                  const std::vector<float>& value);
+    Result<ParamChange> set_preset(const EffectSlot& effect, const std::string& preset);
 
     // Renders floors 0..active_floor, their effects, the composite and the global effects.
     // Allocates nothing. Fails on a device error, or with validation on, on a validation

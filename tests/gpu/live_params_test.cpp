@@ -1,0 +1,196 @@
+// Live parameters through the embedding API (Scene::set_param, Scene::set_preset): the next
+// frame is, bit for bit, what a fresh load of the scene file with those values in it renders;
+// a value that keeps the effect's passes rebuilds nothing (no load, allocation or compile in
+// the change or in the frame); a value that changes them loads the scene again and says so;
+// a refusal names the field and leaves the frame as it was. Validation layers on.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "acetate/host/host.hpp"
+#include "test_files.hpp"
+
+namespace acetate {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path reference_scene(const std::string& plugin) {
+    return fs::path(ACETATE_SOURCE_VALIDATION_DIR) / "references" / plugin / "scenes" / "quay.json";
+}
+
+class LiveParams : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        host::HostOptions options;
+        options.pipeline_cache = false;
+        options.allow_unvalidated = true;  // the build tree's plugins
+        options.plugin_directories = {ACETATE_PLUGIN_DIR};
+        options.on_warning = [](const std::string&) {};
+        auto created = host::Host::create(options);
+        ASSERT_TRUE(created) << created.error().message;
+        host_ = std::move(created.value());
+        dir_ = test::scratch_dir();
+    }
+
+    // The scene file with `edit` applied, written where its images still resolve (image paths
+    // made absolute), loaded fresh, rendered at `time`: what set_param must equal.
+    std::vector<float> fresh_frame(const fs::path& file, const std::function<void(json&)>& edit,
+                                   double time) {
+        json scene = json::parse(test::read_file(file));
+        for (json& floor : scene["floors"])
+            for (json& tile : floor["tiles"]) {
+                tile["image"] = (file.parent_path() / tile["image"].get<std::string>()).string();
+                if (tile.contains("masks"))
+                    for (auto& [kind, mask] : tile["masks"].items())
+                        mask = (file.parent_path() / mask.get<std::string>()).string();
+            }
+        edit(scene);
+        const fs::path edited = dir_ / ("edited" + std::to_string(edits_++) + ".json");
+        test::write_text(edited, scene.dump(2));
+        return frame_of(edited, time, nullptr);
+    }
+
+    // Loads `file`, renders at `time`, returns the frame; the scene stays in `keep` if given.
+    std::vector<float> frame_of(const fs::path& file, double time,
+                                std::unique_ptr<host::Scene>* keep) {
+        auto scene = host_->load_scene_file(file);
+        EXPECT_TRUE(scene) << scene.error().message;
+        if (!scene) return {};
+        std::vector<float> out = render(**scene, time);
+        if (keep) *keep = std::move(scene.value());
+        return out;
+    }
+
+    static std::vector<float> render(host::Scene& scene, double time) {
+        EXPECT_TRUE(scene.set_time(time));
+        auto stats = scene.render();
+        EXPECT_TRUE(stats) << stats.error().message;
+        auto frame = scene.read_frame();
+        EXPECT_TRUE(frame) << frame.error().message;
+        return frame ? frame->rgba : std::vector<float>{};
+    }
+
+    // A frame that must load, allocate and compile nothing.
+    static std::vector<float> render_warm(host::Scene& scene, double time) {
+        EXPECT_TRUE(scene.set_time(time));
+        auto stats = scene.render();
+        EXPECT_TRUE(stats) << stats.error().message;
+        if (stats) {
+            EXPECT_EQ(stats->images_loaded + stats->targets_allocated + stats->shaders_compiled +
+                          stats->pipelines_created,
+                      0u);
+        }
+        auto frame = scene.read_frame();
+        EXPECT_TRUE(frame) << frame.error().message;
+        return frame ? frame->rgba : std::vector<float>{};
+    }
+
+    std::unique_ptr<host::Host> host_;
+    fs::path dir_;
+    int edits_ = 0;
+};
+
+TEST_F(LiveParams, AValueThatKeepsTheFloorEffectsPassesRebuildsNothing) {
+    const fs::path file = reference_scene("acetate.lighting");
+    std::unique_ptr<host::Scene> scene;
+    const std::vector<float> before = frame_of(file, 0.5, &scene);
+    ASSERT_TRUE(scene);
+    const uint32_t pipelines = host_->pipelines_in_pool();
+
+    auto change = scene->set_param({0u, 0}, "day", {0.9f});
+    ASSERT_TRUE(change) << change.error().message;
+    EXPECT_FALSE(change->reloaded) << "\"day\" only changes a uniform";
+    EXPECT_EQ(host_->pipelines_in_pool(), pipelines);
+    const std::vector<float> after = render_warm(*scene, 0.5);
+    EXPECT_NE(after, before) << "the change reached the frame";
+    EXPECT_EQ(after,
+              fresh_frame(
+                  file, [](json& s) { s["floors"][0]["effects"][0]["params"]["day"] = 0.9; }, 0.5));
+    EXPECT_EQ(host_->validation_messages(), 0u);
+}
+
+TEST_F(LiveParams, AGlobalEffectsValueAndAValueThatChangesItsPasses) {
+    const fs::path file = reference_scene("acetate.bloom");
+    std::unique_ptr<host::Scene> scene;
+    frame_of(file, 0, &scene);
+    ASSERT_TRUE(scene);
+    const host::EffectSlot bloom{std::nullopt, 0};
+
+    auto threshold = scene->set_param(bloom, "threshold", {0.4f});
+    ASSERT_TRUE(threshold) << threshold.error().message;
+    EXPECT_FALSE(threshold->reloaded);
+    EXPECT_EQ(render_warm(*scene, 0),
+              fresh_frame(
+                  file, [](json& s) { s["global_effects"][0]["params"]["threshold"] = 0.4; }, 0));
+
+    // "levels" is the depth of bloom's mip chain: another number of passes, so a new load,
+    // which keeps the threshold set before.
+    auto levels = scene->set_param(bloom, "levels", {3.0f});
+    ASSERT_TRUE(levels) << levels.error().message;
+    EXPECT_TRUE(levels->reloaded);
+    EXPECT_EQ(render(*scene, 0), fresh_frame(
+                                     file,
+                                     [](json& s) {
+                                         json& p = s["global_effects"][0]["params"];
+                                         p["threshold"] = 0.4;
+                                         p["levels"] = 3;
+                                     },
+                                     0));
+
+    auto preset = scene->set_preset(bloom, "low");
+    ASSERT_TRUE(preset) << preset.error().message;
+    EXPECT_EQ(render(*scene, 0), fresh_frame(
+                                     file,
+                                     [](json& s) {
+                                         json& e = s["global_effects"][0];
+                                         e["preset"] = "low";
+                                         e["params"]["threshold"] = 0.4;
+                                         e["params"]["levels"] = 3;
+                                     },
+                                     0));
+    EXPECT_EQ(host_->validation_messages(), 0u);
+}
+
+TEST_F(LiveParams, RefusalsNameTheFieldAndLeaveTheFrameAsItWas) {
+    const fs::path file = reference_scene("acetate.lighting");
+    std::unique_ptr<host::Scene> scene;
+    const std::vector<float> before = frame_of(file, 0, &scene);
+    ASSERT_TRUE(scene);
+    const std::string name = file.string();
+    struct Refusal {
+        host::EffectSlot slot;
+        std::string param;
+        std::vector<float> value;
+        std::string expected;
+    };
+    for (const Refusal& r : std::vector<Refusal>{
+             {{5u, 0}, "day", {0.5f}, name + ": floor 5 does not exist (floors 0..0)"},
+             {{0u, 1}, "day", {0.5f}, name + ": floors[0].effects: no effect 1 (it lists 1)"},
+             {{std::nullopt, 0},
+              "day",
+              {0.5f},
+              name + ": global_effects: no effect 0 (it lists 0)"},
+             {{0u, 0}, "dusk", {0.5f}, "floors[0].effects[0].params"},
+             {{0u, 0}, "day", {std::nanf("")}, "not a finite number"},
+             {{0u, 0}, "day", {}, "floors[0].effects[0].params.day"},
+         }) {
+        SCOPED_TRACE(r.expected);
+        auto change = scene->set_param(r.slot, r.param, r.value);
+        ASSERT_FALSE(change);
+        EXPECT_NE(change.error().message.find(r.expected), std::string::npos)
+            << change.error().message;
+        EXPECT_EQ(change.error().message.find('\n'), std::string::npos) << "one line";
+    }
+    auto preset = scene->set_preset({0u, 0}, "dawn");
+    ASSERT_FALSE(preset);
+    EXPECT_NE(preset.error().message.find("floors[0].effects[0].preset"), std::string::npos)
+        << preset.error().message;
+    EXPECT_EQ(render_warm(*scene, 0), before);
+}
+
+}  // namespace
+}  // namespace acetate
