@@ -49,6 +49,13 @@ int main(int argc, char** argv) {
            "START:END:STEP with the end included, each S or N/D (0:11/12:1/12); writes OUT with "
            ".frameNNNN (the time's index) before the extension")
         ->excludes(time);
+    std::vector<std::string> param_texts, preset_texts;
+    cmd->add_option("--param", param_texts,
+                    "FLOOR.EFFECT.NAME=VALUE (repeatable): an effect's parameter for this run, as "
+                    "if the scene said so; FLOOR a floor's name or index or \"global\", EFFECT "
+                    "a plugin id or the entry's index, VALUE a number or 2-3 joined by commas");
+    cmd->add_option("--preset", preset_texts,
+                    "FLOOR.EFFECT=PRESET (repeatable): an effect's preset for this run");
     cmd->add_flag("!--no-pipeline-cache", render.pipeline_cache,
                   "Do not read or write the pipeline cache in the user cache directory");
     cmd->add_option("--registry", render.registry,
@@ -68,6 +75,16 @@ int main(int argc, char** argv) {
             auto times = acetate::parse_render_times(times_list, acetate::flags::kMaxTimeSeconds);
             if (!times) throw CLI::ValidationError(times.error().message);
             render.times = std::move(times.value());
+        }
+        for (const std::string& text : param_texts) {
+            auto flag = acetate::parse_param_flag(text, false);
+            if (!flag) throw CLI::ValidationError(flag.error().message);
+            render.params.push_back(std::move(flag.value()));
+        }
+        for (const std::string& text : preset_texts) {
+            auto flag = acetate::parse_param_flag(text, true);
+            if (!flag) throw CLI::ValidationError(flag.error().message);
+            render.params.push_back(std::move(flag.value()));
         }
         if (floors_list == "all") {
             render.all_floors = true;

@@ -142,6 +142,9 @@ int run_render(const RenderCommand& command) {
             if (f >= floor_count)
                 return fail(fmt::format("--floors: floor {} does not exist in {} (floors 0..{})", f,
                                         file.string(), floor_count - 1));
+        for (const ParamFlag& flag : command.params)
+            if (auto slot = resolve_param_flag(flag, scene.value()); !slot)
+                return fail(slot.error().message);
         if (command.floor && *command.floor >= floor_count)
             return fail(fmt::format("--floor: floor {} does not exist in {} (floors 0..{})",
                                     *command.floor, file.string(), floor_count - 1));
@@ -172,6 +175,13 @@ int run_render(const RenderCommand& command) {
             ++failed_scenes;
             scene_reports.push_back({{"scene", scene_name}, {"error", scene.error().message}});
             continue;
+        }
+        for (const ParamFlag& flag : command.params) {
+            auto slot = resolve_param_flag(flag, scenes[s]);  // checked above: cannot fail
+            auto changed = flag.flag == "--preset"
+                               ? (*scene)->set_preset(slot.value(), flag.preset)
+                               : (*scene)->set_param(slot.value(), flag.name, flag.value);
+            if (!changed) return fail(flag.flag + " " + flag.text + ": " + changed.error().message);
         }
         const host::LoadStatistics& load = (*scene)->load_statistics();
         std::printf(

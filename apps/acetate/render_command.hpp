@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "param_flags.hpp"
+
 namespace acetate {
 
 struct RenderCommand {
@@ -22,6 +24,9 @@ struct RenderCommand {
     // --times LIST|START:END:STEP: render each floor at each of these instead, in one process
     // (time_list.hpp); writes OUT with the time's index before the extension.
     std::vector<double> times;
+    // --param FLOOR.EFFECT.NAME=VALUE and --preset FLOOR.EFFECT=PRESET (param_flags.hpp): set on
+    // every scene after it loads, as if its file said so.
+    std::vector<ParamFlag> params;
     bool pipeline_cache = true;  // --no-pipeline-cache turns the disk cache off
     // Host load policy (docs/registry.md, "Host policy"): a plugin is loaded only if the
     // registry has it VALIDATED for its exact binary.

@@ -96,6 +96,8 @@ Result<SceneInfo> Host::inspect_scene_file(const std::filesystem::path& file) {
     for (size_t f = 0; f < scene->floors.size(); ++f) {
         const FloorDesc& floor = scene->floors[f];
         info.floor_names.push_back(floor.name);
+        info.floor_effects.emplace_back();
+        for (const EffectRef& ref : floor.effects) info.floor_effects.back().push_back(ref.plugin);
         for (size_t t = 0; t < floor.tiles.size(); ++t) {
             const TileDesc& tile = floor.tiles[t];
             const std::string where =
@@ -105,6 +107,7 @@ Result<SceneInfo> Host::inspect_scene_file(const std::filesystem::path& file) {
                 info.inputs.push_back({mask, fmt::format("{}.masks.{}", where, kind)});
         }
     }
+    for (const EffectRef& ref : scene->global_effects) info.global_effects.push_back(ref.plugin);
     return info;
 }
 

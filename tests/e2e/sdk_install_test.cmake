@@ -201,11 +201,18 @@ require_file("${WORK_DIR}/embedded-lit/floor0.png")
 # in turn, and no frame after the load allocates or compiles anything.
 run_step("the embedding host renders the harbour floor by floor (--allow-unvalidated)"
   ${render_env} "${embedding_host}" "${art}/scene.json" "${WORK_DIR}/embedded-harbour"
-  --time 2.5 --allow-unvalidated)
+  --time 2.5 --day-cycle 3 --allow-unvalidated)
 foreach(floor 0 1 2 3)
   require_file("${WORK_DIR}/embedded-harbour/floor${floor}.png")
   if(NOT step_output MATCHES "floor ${floor} \\([a-z]+\\): [0-9.]+ ms, [0-9]+ passes, 0 allocations, 0 compiles")
     message(FATAL_ERROR "sdk_install_test: the embedding host's frame of floor ${floor}:\n${step_output}")
+  endif()
+endforeach()
+# The day run live: `day` set on the four lighting entries in place (no reload), and the frames
+# after it allocate and compile nothing.
+foreach(day "0.00" "0.50" "1.00")
+  if(NOT step_output MATCHES "day ${day}: set on 4 effects in [0-9.]+ ms \\(in place\\), frame [0-9.]+ ms, 0 allocations, 0 compiles")
+    message(FATAL_ERROR "sdk_install_test: the embedding host's day ${day}:\n${step_output}")
   endif()
 endforeach()
 if(NOT step_output MATCHES "warning: loading unvalidated plugin acetate.water")

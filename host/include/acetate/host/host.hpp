@@ -95,6 +95,10 @@ struct SceneInfo {
     std::vector<std::string> floor_names;  // bottom to top
     uint32_t active_floor = 0;             // the scene's own
     bool names_plugins = false;            // some floor or global effect names a plugin
+    // The plugin id of each effect entry, as listed: per floor, and the global effects (what an
+    // EffectSlot counts).
+    std::vector<std::vector<std::string>> floor_effects;
+    std::vector<std::string> global_effects;
     // Every file loading it reads, with the field naming it ("scene.json: floors[0].tiles[1]
     // .image", "....masks.water"); the scene file itself first, named "scene".
     struct Input {
