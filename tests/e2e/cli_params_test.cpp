@@ -16,25 +16,14 @@ fs::path reference_scene(const std::string& plugin) {
            "scenes" / "quay.json";
 }
 
-// The reference scene with `edit` applied, written into `dir` as `name` with its image paths
-// made absolute (so they still resolve there). The runs read their scenes from the scratch
-// folder, so no message carries the word "validation" of the source tree's path, which the
-// fixture takes for a Vulkan validation message.
+// The reference scene with `edit` applied, written into `dir` as `name` (image paths made
+// absolute). The runs read their scenes from the scratch folder, so no message carries the word
+// "validation" of the source tree's path, which the fixture takes for a Vulkan validation
+// message.
 fs::path edited_scene(const fs::path& dir, const std::string& plugin,
                       const std::function<void(json&)>& edit,
                       const std::string& name = "edited.json") {
-    const fs::path file = reference_scene(plugin);
-    json scene = json::parse(test::read_file(file));
-    for (json& floor : scene["floors"])
-        for (json& tile : floor["tiles"]) {
-            tile["image"] = (file.parent_path() / tile["image"].get<std::string>()).string();
-            if (tile.contains("masks"))
-                for (auto& [kind, mask] : tile["masks"].items())
-                    mask = (file.parent_path() / mask.get<std::string>()).string();
-        }
-    edit(scene);
-    test::write_text(dir / name, scene.dump(2));
-    return dir / name;
+    return test::write_edited_scene(reference_scene(plugin), edit, dir / name);
 }
 
 // expect_refused, with the warnings --allow-unvalidated prints at load set aside.

@@ -40,17 +40,8 @@ class LiveParams : public ::testing::Test {
     // made absolute), loaded fresh, rendered at `time`: what set_param must equal.
     std::vector<float> fresh_frame(const fs::path& file, const std::function<void(json&)>& edit,
                                    double time) {
-        json scene = json::parse(test::read_file(file));
-        for (json& floor : scene["floors"])
-            for (json& tile : floor["tiles"]) {
-                tile["image"] = (file.parent_path() / tile["image"].get<std::string>()).string();
-                if (tile.contains("masks"))
-                    for (auto& [kind, mask] : tile["masks"].items())
-                        mask = (file.parent_path() / mask.get<std::string>()).string();
-            }
-        edit(scene);
-        const fs::path edited = dir_ / ("edited" + std::to_string(edits_++) + ".json");
-        test::write_text(edited, scene.dump(2));
+        const fs::path edited = test::write_edited_scene(
+            file, edit, dir_ / ("edited" + std::to_string(edits_++) + ".json"));
         return frame_of(edited, time, nullptr);
     }
 

@@ -97,4 +97,20 @@ CommandResult run_command(const std::string& command, const std::filesystem::pat
     return result;
 }
 
+std::filesystem::path write_edited_scene(const std::filesystem::path& scene,
+                                         const std::function<void(nlohmann::json&)>& edit,
+                                         const std::filesystem::path& out) {
+    nlohmann::json json = nlohmann::json::parse(read_file(scene));
+    const std::filesystem::path folder = scene.parent_path();
+    for (nlohmann::json& floor : json["floors"])
+        for (nlohmann::json& tile : floor["tiles"]) {
+            tile["image"] = (folder / tile["image"].get<std::string>()).string();
+            if (tile.contains("masks"))
+                for (auto& [kind, mask] : tile["masks"].items())
+                    mask = (folder / mask.get<std::string>()).string();
+        }
+    edit(json);
+    return write_text(out, json.dump(2));
+}
+
 }  // namespace acetate::test

@@ -4,6 +4,8 @@
 // captured.
 
 #include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,13 @@ std::filesystem::path write_text(const std::filesystem::path& file, const std::s
 
 // Writes an image as 32-bit float EXR (premultiplied; exact for any float), returns its path.
 std::filesystem::path write_exr(const std::filesystem::path& file, const ImageRGBA& image);
+
+// A scene file with `edit` applied to its JSON, written as `out` with its tile images and masks
+// made absolute, so it loads from any folder; returns `out`. For tests that compare a live or
+// command-line change with the scene file saying the same.
+std::filesystem::path write_edited_scene(const std::filesystem::path& scene,
+                                         const std::function<void(nlohmann::json&)>& edit,
+                                         const std::filesystem::path& out);
 
 // ---- running commands ----------------------------------------------------------------------
 
