@@ -37,6 +37,7 @@ Result<std::unique_ptr<Scene::Loaded>> load(const std::shared_ptr<Host::State>& 
             fmt::format("{}: {}.plugin: this host loads no plugins "
                         "(HostOptions::load_plugins is off)",
                         parsed->file.string(), effect->where)};
+    const std::lock_guard lock(host->calls);
     auto loaded = std::make_unique<Scene::Loaded>();
     loaded->host = host;
     loaded->desc = std::move(parsed.value());
@@ -169,24 +170,29 @@ std::string Host::device_name() const {
 }
 
 Result<void> Host::save_pipeline_cache() {
+    const std::lock_guard lock(state_->calls);
     if (auto saved = state_->renderer->save_pipeline_cache(); !saved)
         return error_of(saved.error());
     return {};
 }
 
 std::string Host::pipeline_cache_warning() const {
+    const std::lock_guard lock(state_->calls);
     return state_->renderer->pipeline_cache_warning();
 }
 
 uint32_t Host::plugins_loaded() const {
+    const std::lock_guard lock(state_->calls);
     return uint32_t(state_->renderer->plugins().loaded_count());
 }
 
 uint32_t Host::pipelines_in_pool() const {
+    const std::lock_guard lock(state_->calls);
     return uint32_t(state_->renderer->pool().pipeline_count());
 }
 
 uint32_t Host::validation_messages() const {
+    const std::lock_guard lock(state_->calls);
     return uint32_t(state_->context->validation_messages().size());
 }
 

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include "acetate/host/host.hpp"
@@ -21,6 +22,11 @@ struct Host::State {
     std::unique_ptr<Renderer> renderer;
     std::function<void(const std::string&)> warn;
     bool load_plugins = true;  // HostOptions::load_plugins
+    // Held by every call of the Host and its Scenes that touches the device, the renderer or a
+    // scene: the queue, the pipeline pool, the plugin loader and the validation messages are
+    // shared and unsynchronised, so calls from several threads run one after another (a load
+    // on one thread waits for a frame on another, and the reverse) instead of racing.
+    mutable std::mutex calls;
 };
 
 struct Scene::Loaded {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <mutex>
 
 #include "api/host_internal.hpp"
 #include "scene/image_io.hpp"
@@ -77,6 +78,7 @@ Result<ParamChange> change_effect(Scene::Loaded& loaded, const EffectSlot& slot,
 
 Result<ParamChange> Scene::set_param(const EffectSlot& effect, const std::string& name,
                                      const std::vector<float>& value) {
+    const std::lock_guard lock(loaded_->host->calls);
     return change_effect(*loaded_, effect, [&](EffectRef& ref) {
         // As the scene file would say it: a number, or an array of 2 or 3.
         ref.params[name] = value.size() == 1
@@ -86,52 +88,67 @@ Result<ParamChange> Scene::set_param(const EffectSlot& effect, const std::string
 }
 
 Result<ParamChange> Scene::set_preset(const EffectSlot& effect, const std::string& preset) {
+    const std::lock_guard lock(loaded_->host->calls);
     return change_effect(*loaded_, effect, [&](EffectRef& ref) { ref.preset = preset; });
 }
 
 Scene::Scene(std::unique_ptr<Loaded> loaded) : loaded_(std::move(loaded)) {}
 // The compositor goes first: it uses the renderer and device the Loaded keeps alive.
 Scene::~Scene() {
-    if (loaded_) loaded_->compositor.reset();
+    if (!loaded_) return;
+    // Released before loaded_ goes: it may hold the last reference to the lock's Host::State.
+    const std::lock_guard lock(loaded_->host->calls);
+    loaded_->compositor.reset();
 }
 
 uint32_t Scene::width() const {
+    const std::lock_guard lock(loaded_->host->calls);
     return loaded_->desc.width;
 }
 uint32_t Scene::height() const {
+    const std::lock_guard lock(loaded_->host->calls);
     return loaded_->desc.height;
 }
 uint32_t Scene::floor_count() const {
+    const std::lock_guard lock(loaded_->host->calls);
     return uint32_t(loaded_->desc.floors.size());
 }
 std::string Scene::floor_name(uint32_t floor) const {
-    return floor < floor_count() ? loaded_->desc.floors[floor].name : std::string();
+    const std::lock_guard lock(loaded_->host->calls);
+    return floor < loaded_->desc.floors.size() ? loaded_->desc.floors[floor].name : std::string();
 }
 uint32_t Scene::active_floor() const {
+    const std::lock_guard lock(loaded_->host->calls);
     return loaded_->active_floor;
 }
 double Scene::time() const {
+    const std::lock_guard lock(loaded_->host->calls);
     return loaded_->time;
 }
 const LoadStatistics& Scene::load_statistics() const {
     return loaded_->load;
 }
 std::vector<ImageInfo> Scene::render_targets() const {
+    const std::lock_guard lock(loaded_->host->calls);
     return infos_of(loaded_->compositor->targets_held());
 }
 std::vector<ImageInfo> Scene::images_held() const {
+    const std::lock_guard lock(loaded_->host->calls);
     return infos_of(loaded_->compositor->images_held());
 }
 
 Result<void> Scene::set_active_floor(uint32_t floor) {
-    if (floor >= floor_count())
+    const std::lock_guard lock(loaded_->host->calls);
+    const size_t floors = loaded_->desc.floors.size();
+    if (floor >= floors)
         return Error{fmt::format("{}: floor {} does not exist (floors 0..{})",
-                                 loaded_->desc.file.string(), floor, floor_count() - 1)};
+                                 loaded_->desc.file.string(), floor, floors - 1)};
     loaded_->active_floor = floor;
     return {};
 }
 
 Result<void> Scene::set_time(double seconds) {
+    const std::lock_guard lock(loaded_->host->calls);
     if (!std::isfinite(seconds) || std::abs(seconds) > double(std::numeric_limits<float>::max()))
         return Error{
             fmt::format("time: expected a finite number of seconds within the 32-bit "
@@ -142,6 +159,7 @@ Result<void> Scene::set_time(double seconds) {
 }
 
 Result<FrameStatistics> Scene::render() {
+    const std::lock_guard lock(loaded_->host->calls);
     VulkanContext& context = *loaded_->host->context;
     const size_t messages_before = context.validation_messages().size();
     auto stats = loaded_->compositor->render(loaded_->active_floor, loaded_->time);
@@ -169,6 +187,7 @@ Result<FrameStatistics> Scene::render() {
 }
 
 Result<Image> Scene::read_frame() {
+    const std::lock_guard lock(loaded_->host->calls);
     if (!loaded_->rendered)
         return Error{
             fmt::format("{}: no frame rendered yet (render() first)", loaded_->desc.file.string())};
@@ -178,6 +197,7 @@ Result<Image> Scene::read_frame() {
 }
 
 Result<void> Scene::write_frame(const std::filesystem::path& file) {
+    const std::lock_guard lock(loaded_->host->calls);
     const std::string ext = file.extension().string();
     if (ext != ".exr" && ext != ".png")
         return Error{fmt::format("{}: a frame is written as .exr or .png", file.string())};

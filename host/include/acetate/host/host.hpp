@@ -18,7 +18,9 @@
 // the same line `acetate render` prints; its code never runs in the process.
 //
 // Errors are Result values (acetate/host/result.hpp) with one-line messages; nothing here
-// throws. A Host and its Scenes are used from one thread at a time.
+// throws. A Host and its Scenes may be called from several threads: the calls that touch the
+// device or a scene take one lock per Host and run one after another (a load on one thread
+// waits for a frame on another). Scenes of different Hosts do not wait for each other.
 
 #include <cstdint>
 #include <filesystem>
