@@ -24,6 +24,9 @@ const EffectRef* first_effect(const SceneDesc& scene) {
 acetate::OutputView internal_view(View view) {
     return acetate::OutputView(int(view));  // the same order (static_asserts below)
 }
+static_assert(int(ErrorCode::PluginRefused) == int(acetate::ErrorCode::PluginRefused) &&
+              int(ErrorCode::InvalidInput) == int(acetate::ErrorCode::InvalidInput) &&
+              int(ErrorCode::ShaderCompile) == int(acetate::ErrorCode::ShaderCompile));
 static_assert(int(View::Isolation) == int(acetate::OutputView::Isolation) &&
               int(View::FloorRgb) == int(acetate::OutputView::FloorRgb));
 
@@ -45,6 +48,7 @@ Result<std::unique_ptr<Scene::Loaded>> load(const std::shared_ptr<Host::State>& 
     options.view = internal_view(scene_options.view);
     options.format = scene_options.precision == Precision::Float32 ? VK_FORMAT_R32G32B32A32_SFLOAT
                                                                    : VK_FORMAT_R16G16B16A16_SFLOAT;
+    options.leave_out_refused = scene_options.leave_out_refused_effects;
     auto compositor = Compositor::load(*host->renderer, loaded->desc, options);
     if (!compositor) return error_of(compositor.error());
     loaded->compositor = std::move(compositor.value());
@@ -57,6 +61,8 @@ Result<std::unique_ptr<Scene::Loaded>> load(const std::shared_ptr<Host::State>& 
             fmt::format("warning: {}: {} tile texels have colour at alpha 0 (or NaN/Inf); "
                         "they are dropped",
                         loaded->desc.file.string(), s.tile_texel_violations));
+    for (const LeftOutEntry& e : loaded->compositor->left_out())
+        host->warn(fmt::format("warning: loaded without {}: {}", e.plugin, e.message));
     loaded->active_floor = loaded->desc.active_floor;
     return loaded;
 }
@@ -157,7 +163,7 @@ Result<std::unique_ptr<Host>> Host::create(const HostOptions& options) {
         state->renderer->plugins().set_admission(
             [](const std::string& id, const std::filesystem::path& file,
                const std::filesystem::path&) -> acetate::Result<void> {
-                return make_error(ErrorCode::InvalidInput,
+                return make_error(acetate::ErrorCode::InvalidInput,
                                   fmt::format("plugin {} ({}): this host loads no plugins "
                                               "(HostOptions::load_plugins is off)",
                                               id, file.string()));

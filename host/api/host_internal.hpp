@@ -41,7 +41,8 @@ struct Scene::Loaded {
 };
 
 inline Error error_of(const acetate::Error& e) {
-    return Error{e.message};
+    // The public codes are the internal ones, in the same order (checked in host.cpp).
+    return Error{e.message, ErrorCode(int(e.code))};
 }
 
 }  // namespace acetate::host

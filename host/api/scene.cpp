@@ -128,6 +128,13 @@ double Scene::time() const {
 const LoadStatistics& Scene::load_statistics() const {
     return loaded_->load;
 }
+std::vector<LeftOutEffect> Scene::left_out_effects() const {
+    const std::lock_guard lock(loaded_->host->calls);
+    std::vector<LeftOutEffect> out;
+    for (const LeftOutEntry& e : loaded_->compositor->left_out())
+        out.push_back({{e.floor, e.index}, e.plugin, e.message});
+    return out;
+}
 std::vector<ImageInfo> Scene::render_targets() const {
     const std::lock_guard lock(loaded_->host->calls);
     return infos_of(loaded_->compositor->targets_held());

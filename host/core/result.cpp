@@ -26,6 +26,8 @@ const char* to_string(ErrorCode code) {
             return "shader compile";
         case ErrorCode::VulkanCall:
             return "vulkan call";
+        case ErrorCode::PluginRefused:
+            return "plugin refused";
     }
     return "unknown";
 }

@@ -23,6 +23,7 @@ enum class ErrorCode {
     OutOfMemory,    // a Vulkan allocation failed
     ShaderCompile,  // glslang rejected a shader
     VulkanCall,     // any other Vulkan call failed
+    PluginRefused,  // the load policy refused a plugin (not VALIDATED for its binary)
 };
 
 const char* to_string(ErrorCode code);

@@ -80,7 +80,9 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::admit_and_open(
     auto admitted = admission_ ? admission_(id, file, sealed->path) : Result<void>();
     if (!admitted) {
         ::close(sealed->fd);  // never mapped
-        return admitted.error();
+        Error refused = admitted.error();
+        refused.code = ErrorCode::PluginRefused;  // what a program may choose to leave out
+        return refused;
     }
     // From here the memory file stays open for the life of the process, whatever happens: the
     // dynamic linker knows a library by the name "/proc/self/fd/N" (and may keep a refused one

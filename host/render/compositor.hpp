@@ -66,6 +66,16 @@ struct CompositorOptions {
     // for acetate-bench. Off, a frame records no query. A device whose queue has no timestamps
     // loads anyway, untimed (gpu_timings_warning() says why).
     bool gpu_timings = false;
+    // An effect whose plugin the load policy refuses is left out (recorded in left_out())
+    // instead of failing the load.
+    bool leave_out_refused = false;
+};
+
+// An effect entry loaded without (CompositorOptions::leave_out_refused).
+struct LeftOutEntry {
+    std::optional<uint32_t> floor;  // empty: a global effect
+    uint32_t index = 0;             // in the scene's list
+    std::string plugin, message;
 };
 
 // How the loaded scene's effect passes were given: only passes compiled from GLSL get
@@ -125,6 +135,7 @@ class Compositor {
     Result<bool> set_effect_ref(std::optional<uint32_t> floor, uint32_t index,
                                 const EffectRef& ref);
     const SceneDesc& scene() const { return scene_; }
+    const std::vector<LeftOutEntry>& left_out() const { return left_out_; }
 
     uint32_t floor_count() const { return uint32_t(resources_->floors().size()); }
     uint32_t width() const { return width_; }
@@ -155,6 +166,9 @@ class Compositor {
     // Load (compositor_load.cpp).
     // Builds every effect instance; returns the mask composites it made (for the GPU upload).
     Result<SceneMasks> create_effects(const SceneDesc& scene);
+    // Whether an effect that failed with `error` is left out (recorded) rather than failing.
+    bool leave_out(const Error& error, std::optional<uint32_t> floor, size_t index,
+                   const EffectRef& ref);
     // Where a floor with coverage-expanding effects may change pixels (see create_effects).
     PixelRect expansion_area(const SceneDesc& scene, size_t floor) const;
     FrameTargetNeeds target_needs() const;
@@ -217,6 +231,7 @@ class Compositor {
     // The floors' mask composites for build() when set_effect_ref runs it again: composited
     // from the files on the first such call that needs them, then kept (a load keeps none).
     std::optional<SceneMasks> live_masks_;
+    std::vector<LeftOutEntry> left_out_;
 };
 
 }  // namespace acetate

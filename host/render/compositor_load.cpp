@@ -36,6 +36,7 @@ Result<SceneMasks> Compositor::create_effects(const SceneDesc& scene) {
         for (size_t i = 0; i < scene.floors[f].effects.size(); ++i) {
             const EffectRef& ref = scene.floors[f].effects[i];
             auto instance = create_effect_instance(renderer_, scene, ref, int64_t(f), setup);
+            if (!instance && leave_out(instance.error(), uint32_t(f), i, ref)) continue;
             if (!instance) return instance.error();
             instance.value()->scene_index = i;
             // An instance that declared nothing (water on a floor without water) is dropped:
@@ -48,12 +49,21 @@ Result<SceneMasks> Compositor::create_effects(const SceneDesc& scene) {
     for (size_t i = 0; i < scene.global_effects.size(); ++i) {
         auto instance =
             create_effect_instance(renderer_, scene, scene.global_effects[i], -1, setup);
+        if (!instance && leave_out(instance.error(), std::nullopt, i, scene.global_effects[i]))
+            continue;
         if (!instance) return instance.error();
         instance.value()->scene_index = i;
         if (instance.value()->passes.empty()) continue;
         global_effects_.push_back(std::move(instance.value()));
     }
     return masks;
+}
+
+bool Compositor::leave_out(const Error& error, std::optional<uint32_t> floor, size_t index,
+                           const EffectRef& ref) {
+    if (!options_.leave_out_refused || error.code != ErrorCode::PluginRefused) return false;
+    left_out_.push_back({floor, uint32_t(index), ref.plugin, error.message});
+    return true;
 }
 
 PixelRect Compositor::expansion_area(const SceneDesc& scene, size_t floor) const {

@@ -542,6 +542,17 @@ TEST_F(HostPolicy, TheEmbeddingApiRefusesAndLoadsAsTheCliDoes) {
             << cli_line;
         EXPECT_TRUE(contains(line, "or set HostOptions::allow_unvalidated")) << line;
         EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+        EXPECT_EQ(scene.error().code, host::ErrorCode::PluginRefused);
+        // Asked for, the scene loads without the refused effect (as if not listed) and says so.
+        host::SceneOptions leave_out;
+        leave_out.leave_out_refused_effects = true;
+        auto without = (*host)->load_scene_file(dir_ / "scene.json", leave_out);
+        auto plain = (*host)->load_scene_text(scene_text(false), dir_, "plain.json");
+        ASSERT_TRUE(without && plain) << (without ? plain.error() : without.error()).message;
+        ASSERT_EQ((*without)->left_out_effects().size(), 1u);
+        EXPECT_EQ((*without)->left_out_effects()[0].message, line);
+        ASSERT_TRUE((*without)->render() && (*plain)->render());
+        EXPECT_EQ((*without)->read_frame()->rgba, (*plain)->read_frame()->rgba);
     }
 
     options.registry = dir_ / "registry.json";

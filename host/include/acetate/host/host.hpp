@@ -87,6 +87,11 @@ enum class Precision { Float16, Float32 };
 struct SceneOptions {
     View view = View::Normal;
     Precision precision = Precision::Float16;
+    // An effect whose plugin the load policy refuses (ErrorCode::PluginRefused) fails the
+    // load; with this set, the scene loads without that effect instead, as if its file did not
+    // list it, and Scene::left_out_effects() says which and why (each also goes to
+    // on_warning). Any other failure still fails the load.
+    bool leave_out_refused_effects = false;
 };
 
 // A scene file read and checked without a device (Host::inspect_scene_file): enough for a
@@ -168,6 +173,13 @@ struct FrameStatistics {
     uint64_t images_loaded = 0, targets_allocated = 0, shaders_compiled = 0, pipelines_created = 0;
     std::vector<StepStatistics> floors;            // floors 0..active_floor, bottom to top
     std::optional<StepStatistics> global_effects;  // when the scene has any
+};
+
+// An effect a scene loaded without (SceneOptions::leave_out_refused_effects).
+struct LeftOutEffect {
+    EffectSlot slot;
+    std::string plugin;   // its id
+    std::string message;  // why, the line the load would have failed with
 };
 
 class Scene;
@@ -265,6 +277,9 @@ class Scene {
     Result<void> write_frame(const std::filesystem::path& file);
 
     const LoadStatistics& load_statistics() const;
+    // The effects left out because the policy refused their plugin; empty unless
+    // SceneOptions::leave_out_refused_effects was set.
+    std::vector<LeftOutEffect> left_out_effects() const;
     // What the scene holds on the device: its render targets, and every image (targets, tile
     // textures and masks).
     std::vector<ImageInfo> render_targets() const;

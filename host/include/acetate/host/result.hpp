@@ -12,8 +12,25 @@
 
 namespace acetate::host {
 
+// What kind of failure, for a program that acts on it (a message is for people).
+enum class ErrorCode {
+    InvalidInput,   // a scene file, field, argument or parameter is malformed or refused
+    FileNotFound,   // a named file does not exist
+    ImageDecode,    // an image could not be read
+    ImageEncode,    // an image could not be written
+    Io,             // another file-system failure
+    VulkanInit,     // the Vulkan instance or device could not be created
+    NoDevice,       // no Vulkan device matches the request
+    DeviceLimit,    // the request exceeds what the device allows (an image size)
+    OutOfMemory,    // a device allocation failed
+    ShaderCompile,  // an effect's shader did not compile
+    VulkanCall,     // another Vulkan call failed
+    PluginRefused,  // the load policy refused a plugin (not VALIDATED for its exact binary)
+};
+
 struct Error {
     std::string message;  // one line, no trailing newline
+    ErrorCode code = ErrorCode::InvalidInput;
 };
 
 template <class T>
