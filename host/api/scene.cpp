@@ -40,27 +40,15 @@ std::vector<ImageInfo> infos_of(const std::vector<TargetInfo>& targets) {
 Result<ParamChange> change_effect(Scene::Loaded& loaded, const EffectSlot& slot,
                                   const std::function<void(EffectRef&)>& edit) {
     const auto start = std::chrono::steady_clock::now();
-    const SceneDesc& current = loaded.compositor->scene();
-    const std::vector<EffectRef>* refs = &current.global_effects;
-    if (slot.floor) {
-        if (*slot.floor >= current.floors.size())
-            return Error{fmt::format("{}: floor {} does not exist (floors 0..{})",
-                                     current.file.string(), *slot.floor,
-                                     current.floors.size() - 1)};
-        refs = &current.floors[*slot.floor].effects;
-    }
-    if (slot.index >= refs->size())
-        return Error{fmt::format(
-            "{}: {}: no effect {} (it lists {})", current.file.string(),
-            slot.floor ? fmt::format("floors[{}].effects", *slot.floor) : "global_effects",
-            slot.index, refs->size())};
-    EffectRef ref = (*refs)[slot.index];
+    auto current = loaded.compositor->effect_ref(slot.floor, slot.index);
+    if (!current) return error_of(current.error());
+    EffectRef ref = std::move(current.value());
     edit(ref);
     auto in_place = loaded.compositor->set_effect_ref(slot.floor, slot.index, ref);
     if (!in_place) return error_of(in_place.error());
     ParamChange change;
     if (!in_place.value()) {
-        SceneDesc desc = current;
+        SceneDesc desc = loaded.compositor->scene();
         (slot.floor ? desc.floors[*slot.floor].effects : desc.global_effects)[slot.index] = ref;
         auto compositor = Compositor::load(*loaded.host->renderer, desc, loaded.options);
         if (!compositor) return error_of(compositor.error());

@@ -134,6 +134,9 @@ class Compositor {
     // build() failing) name the scene file and the effect's field and change nothing.
     Result<bool> set_effect_ref(std::optional<uint32_t> floor, uint32_t index,
                                 const EffectRef& ref);
+    // The scene's entry of that effect as it stands; refused (naming the file and field) when
+    // the floor or the effect does not exist.
+    Result<EffectRef> effect_ref(std::optional<uint32_t> floor, uint32_t index) const;
     const SceneDesc& scene() const { return scene_; }
     const std::vector<LeftOutEntry>& left_out() const { return left_out_; }
 

@@ -11,20 +11,28 @@
 
 namespace acetate {
 
-Result<bool> Compositor::set_effect_ref(std::optional<uint32_t> floor, uint32_t index,
-                                        const EffectRef& ref) {
+Result<EffectRef> Compositor::effect_ref(std::optional<uint32_t> floor, uint32_t index) const {
     const std::string file = scene_.file.string();
     if (floor && *floor >= scene_.floors.size())
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("{}: floor {} does not exist (floors 0..{})", file, *floor,
                                       scene_.floors.size() - 1));
-    std::vector<EffectRef>& refs = floor ? scene_.floors[*floor].effects : scene_.global_effects;
+    const std::vector<EffectRef>& refs =
+        floor ? scene_.floors[*floor].effects : scene_.global_effects;
     if (index >= refs.size())
         return make_error(
             ErrorCode::InvalidInput,
             fmt::format("{}: {}: no effect {} (it lists {})", file,
                         floor ? fmt::format("floors[{}].effects", *floor) : "global_effects", index,
                         refs.size()));
+    return refs[index];
+}
+
+Result<bool> Compositor::set_effect_ref(std::optional<uint32_t> floor, uint32_t index,
+                                        const EffectRef& ref) {
+    auto current = effect_ref(floor, index);
+    if (!current) return current.error();
+    std::vector<EffectRef>& refs = floor ? scene_.floors[*floor].effects : scene_.global_effects;
     EffectRef updated = ref;
     updated.plugin = refs[index].plugin;  // the effect is changed, never swapped
     updated.where = refs[index].where;

@@ -14,11 +14,10 @@
 #include <string>
 
 #include "acetate/host/host.hpp"
+#include "api_host.hpp"
 
 namespace acetate {
 namespace {
-
-namespace fs = std::filesystem;
 
 constexpr uint32_t kWarmUpFrames = 60;
 constexpr uint32_t kFrames = 1000;
@@ -51,15 +50,9 @@ class FrameMemory : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FrameMemory, AThousandFramesDoNotGrowTheHostOrTheDevice) {
     const std::string id = GetParam();
-    host::HostOptions options;
-    options.pipeline_cache = false;
-    options.allow_unvalidated = true;  // the build tree's plugins, not an installation
-    options.plugin_directories = {ACETATE_PLUGIN_DIR};
-    auto created = host::Host::create(options);
+    auto created = test::build_tree_host();
     ASSERT_TRUE(created) << created.error().message;
-    const fs::path scene_file =
-        fs::path(ACETATE_SOURCE_VALIDATION_DIR) / "references" / id / "scenes" / "quay.json";
-    auto scene = (*created)->load_scene_file(scene_file);
+    auto scene = (*created)->load_scene_file(test::quay_scene(id));
     ASSERT_TRUE(scene) << scene.error().message;
 
     auto render_at = [&](uint32_t frame) -> bool {

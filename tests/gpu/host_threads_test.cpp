@@ -8,23 +8,13 @@
 #include <thread>
 
 #include "acetate/host/host.hpp"
+#include "api_host.hpp"
 
 namespace acetate {
 namespace {
 
-namespace fs = std::filesystem;
-
-fs::path reference_scene(const std::string& plugin) {
-    return fs::path(ACETATE_SOURCE_VALIDATION_DIR) / "references" / plugin / "scenes" / "quay.json";
-}
-
 std::unique_ptr<host::Host> make_host() {
-    host::HostOptions options;
-    options.pipeline_cache = false;
-    options.allow_unvalidated = true;  // the build tree's plugins
-    options.plugin_directories = {ACETATE_PLUGIN_DIR};
-    options.on_warning = [](const std::string&) {};
-    auto created = host::Host::create(options);
+    auto created = test::build_tree_host();
     EXPECT_TRUE(created) << created.error().message;
     return created ? std::move(created.value()) : nullptr;
 }
@@ -70,8 +60,8 @@ std::vector<std::vector<float>> frames_on_one_thread(host::Scene& scene) {
 TEST(HostThreads, TwoScenesOfOneHostRenderFromTwoThreadsAsOnOne) {
     auto host = make_host();
     ASSERT_TRUE(host);
-    auto fire = host->load_scene_file(reference_scene("acetate.fire"));
-    auto water = host->load_scene_file(reference_scene("acetate.water"));
+    auto fire = host->load_scene_file(test::quay_scene("acetate.fire"));
+    auto water = host->load_scene_file(test::quay_scene("acetate.water"));
     ASSERT_TRUE(fire) << fire.error().message;
     ASSERT_TRUE(water) << water.error().message;
     const auto fire_frames = frames_on_one_thread(**fire);
@@ -92,12 +82,12 @@ TEST(HostThreads, TwoScenesOfOneHostRenderFromTwoThreadsAsOnOne) {
 TEST(HostThreads, LoadsOnOneThreadBesideFramesOnAnother) {
     auto host = make_host();
     ASSERT_TRUE(host);
-    auto fire = host->load_scene_file(reference_scene("acetate.fire"));
+    auto fire = host->load_scene_file(test::quay_scene("acetate.fire"));
     ASSERT_TRUE(fire) << fire.error().message;
     const auto fire_frames = frames_on_one_thread(**fire);
     std::vector<float> bloom_frame;
     {
-        auto bloom = host->load_scene_file(reference_scene("acetate.bloom"));
+        auto bloom = host->load_scene_file(test::quay_scene("acetate.bloom"));
         ASSERT_TRUE(bloom) << bloom.error().message;
         std::string error;
         bloom_frame = frame_at(**bloom, 0.5, error);
@@ -111,7 +101,7 @@ TEST(HostThreads, LoadsOnOneThreadBesideFramesOnAnother) {
     std::thread loader([&] {
         // Loads, a frame and the scene's destruction, again and again beside the frames.
         for (int i = 0; i < 4; ++i) {
-            auto bloom = host->load_scene_file(reference_scene("acetate.bloom"));
+            auto bloom = host->load_scene_file(test::quay_scene("acetate.bloom"));
             if (!bloom) {
                 load_error = bloom.error().message;
                 return;

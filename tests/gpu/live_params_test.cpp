@@ -10,6 +10,7 @@
 #include <string>
 
 #include "acetate/host/host.hpp"
+#include "api_host.hpp"
 #include "test_files.hpp"
 
 namespace acetate {
@@ -18,19 +19,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-fs::path reference_scene(const std::string& plugin) {
-    return fs::path(ACETATE_SOURCE_VALIDATION_DIR) / "references" / plugin / "scenes" / "quay.json";
-}
-
 class LiveParams : public ::testing::Test {
   protected:
     void SetUp() override {
-        host::HostOptions options;
-        options.pipeline_cache = false;
-        options.allow_unvalidated = true;  // the build tree's plugins
-        options.plugin_directories = {ACETATE_PLUGIN_DIR};
-        options.on_warning = [](const std::string&) {};
-        auto created = host::Host::create(options);
+        auto created = test::build_tree_host();
         ASSERT_TRUE(created) << created.error().message;
         host_ = std::move(created.value());
         dir_ = test::scratch_dir();
@@ -86,7 +78,7 @@ class LiveParams : public ::testing::Test {
 };
 
 TEST_F(LiveParams, AValueThatKeepsTheFloorEffectsPassesRebuildsNothing) {
-    const fs::path file = reference_scene("acetate.lighting");
+    const fs::path file = test::quay_scene("acetate.lighting");
     std::unique_ptr<host::Scene> scene;
     const std::vector<float> before = frame_of(file, 0.5, &scene);
     ASSERT_TRUE(scene);
@@ -105,7 +97,7 @@ TEST_F(LiveParams, AValueThatKeepsTheFloorEffectsPassesRebuildsNothing) {
 }
 
 TEST_F(LiveParams, AGlobalEffectsValueAndAValueThatChangesItsPasses) {
-    const fs::path file = reference_scene("acetate.bloom");
+    const fs::path file = test::quay_scene("acetate.bloom");
     std::unique_ptr<host::Scene> scene;
     frame_of(file, 0, &scene);
     ASSERT_TRUE(scene);
@@ -147,7 +139,7 @@ TEST_F(LiveParams, AGlobalEffectsValueAndAValueThatChangesItsPasses) {
 }
 
 TEST_F(LiveParams, RefusalsNameTheFieldAndLeaveTheFrameAsItWas) {
-    const fs::path file = reference_scene("acetate.lighting");
+    const fs::path file = test::quay_scene("acetate.lighting");
     std::unique_ptr<host::Scene> scene;
     const std::vector<float> before = frame_of(file, 0, &scene);
     ASSERT_TRUE(scene);
