@@ -6,7 +6,9 @@
 #include <algorithm>
 
 #include "case_spec.hpp"
+#include "combinations.hpp"
 #include "input_model.hpp"
+#include "neighbours.hpp"
 #include "references.hpp"
 
 namespace acetate::harness {
@@ -214,16 +216,54 @@ void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Pla
     loads.prior_loads = 2;
     p.add(loads);
 
-    // ---- combinations: a Latin hypercube over every dimension ----
-    const size_t points = size_t(2 * strictness);
-    const auto design =
-        latin_hypercube(points, scenario_dimensions(plugin), case_seed(run_seed, "combined"));
-    for (size_t i = 0; i < points; ++i) {
-        CaseSpec s = p.contract(fmt::format("combined/{}", i + 1),
-                                "a point of the Latin hypercube over every input dimension");
-        scenario_at(plugin, design[i], s);
-        s.inputs["params"] = "Latin hypercube";
+    // ---- contexts: the harness's spread neighbour before and after the plugin; rgba32f ----
+    // The spread puts alpha past the floor's tiles (and its coverage bounds), which the plugin
+    // after it is given and must keep; the plugin before it must hand on a valid image.
+    const std::string spread = spread_neighbour_id(!floor_effect);
+    for (const bool before : {false, true}) {
+        CaseSpec s = p.contract(
+            before ? "contexts/before-spread" : "contexts/after-spread",
+            before ? "the plugin before the harness's coverage-expanding spread neighbour"
+                   : "the plugin after the harness's coverage-expanding spread neighbour, which "
+                     "puts alpha past the floor's tiles",
+            128, 96, Pattern::Standard, 2);
+        (before ? s.effects_after : s.effects_before).push_back(spread);
         p.add(s);
+    }
+    {
+        // Wider than 2048: past it a half float cannot hold every pixel position.
+        CaseSpec s = p.contract("formats/rgba32f",
+                                "rgba32f targets on a canvas wider than 2048, 2560x40, two "
+                                "floors; against the same scene in rgba16f",
+                                2560, 40, Pattern::Standard, 2);
+        s.format = TargetFormat::Rgba32f;
+        s.relation = Relation::FormatAgreement;
+        p.add(s);
+    }
+    if (floor_effect) {
+        CaseSpec s = p.contract("relations/canvas-size",
+                                "two floors, transparent along the right and bottom edges, "
+                                "against the same floors on a larger canvas",
+                                128, 96, Pattern::Standard, 2);
+        s.relation = Relation::CanvasSize;
+        p.add(s);
+    }
+
+    // ---- combinations: pairwise from strictness 4, Latin hypercube points below it and
+    // from strictness 6 on top of it ----
+    if (strictness >= kPairwiseStrictness)
+        for (CaseSpec& s : pairwise_combinations(plugin, run_seed).cases) p.add(std::move(s));
+    if (strictness < kPairwiseStrictness || strictness >= 6) {
+        const size_t points = size_t(2 * strictness);
+        const auto design =
+            latin_hypercube(points, scenario_dimensions(plugin), case_seed(run_seed, "combined"));
+        for (size_t i = 0; i < points; ++i) {
+            CaseSpec s = p.contract(fmt::format("combined/{}", i + 1),
+                                    "a point of the Latin hypercube over every input dimension");
+            scenario_at(plugin, design[i], s);
+            s.inputs["params"] = "Latin hypercube";
+            p.add(s);
+        }
     }
 
     // ---- determinism, isolation, undefined results ----
@@ -269,6 +309,17 @@ void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Pla
 }
 
 }  // namespace
+
+std::string combinations_summary(const PluginInfo& plugin, int strictness, uint64_t run_seed) {
+    strictness = std::clamp(strictness, 1, 10);
+    const std::string hypercube =
+        fmt::format("{} points of a Latin hypercube over every dimension", 2 * strictness);
+    if (strictness < kPairwiseStrictness)
+        return hypercube +
+               fmt::format(" (strength 1; pairwise from strictness {})", kPairwiseStrictness);
+    const std::string pairwise = pairwise_combinations(plugin, run_seed).summary;
+    return strictness >= 6 ? pairwise + ", and " + hypercube : pairwise;
+}
 
 std::vector<CaseSpec> plan_cases(const PluginInfo& plugin, int strictness, uint64_t run_seed,
                                  bool alpha_stage, bool integration_stage,

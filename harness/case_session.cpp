@@ -9,6 +9,7 @@
 #include <map>
 
 #include "core/sha256.hpp"
+#include "relation_checks.hpp"
 #include "vulkan/pipeline_cache_file.hpp"
 
 namespace acetate::harness {
@@ -95,6 +96,9 @@ Result<std::unique_ptr<Compositor>> load(const CaseContext& c, Session& s, const
     CompositorOptions options;
     options.view = OutputView::FloorRgb;  // the active floor's whole target is drawn and kept
     options.poison = poison_colour(c.spec.poison);
+    options.format = c.spec.format == TargetFormat::Rgba32f ? VK_FORMAT_R32G32B32A32_SFLOAT
+                                                            : VK_FORMAT_R16G16B16A16_SFLOAT;
+    if (how.format) options.format = *how.format;
     options.checked_builtins = how.checked_builtins;
     options.ignore_declared_reach = how.ignore_declared_reach;
     return Compositor::load(*s.renderer, scene, options);
@@ -114,6 +118,33 @@ SceneEffect under_test(const CaseContext& c, json params) {
     return {c.plugin.id, params, c.spec.preset};
 }
 
+namespace {
+
+// The plugin between the case's neighbours (none, unless a context case).
+std::vector<SceneEffect> with_neighbours(const CaseContext& c, SceneEffect plugin) {
+    std::vector<SceneEffect> effects;
+    for (const std::string& id : c.spec.effects_before) effects.push_back({id});
+    effects.push_back(std::move(plugin));
+    for (const std::string& id : c.spec.effects_after) effects.push_back({id});
+    return effects;
+}
+
+// The floor transparent (pixels and masks) within `band` pixels of the canvas's right and
+// bottom edges: what lies past them then reads the same on a larger canvas (canvas-size).
+void clear_canvas_edges(FloorInput& floor, uint32_t width, uint32_t height, uint32_t band) {
+    if (!floor.tiled) return;
+    auto clear = [&](ImageRGBA& image) {
+        for (uint32_t y = 0; y < image.height; ++y)
+            for (uint32_t x = 0; x < image.width; ++x)
+                if (floor.x + x + band >= width || floor.y + y + band >= height)
+                    std::fill_n(image.at(x, y), 4, 0.0f);
+    };
+    clear(floor.image);
+    for (auto& [kind, mask] : floor.masks) clear(mask);
+}
+
+}  // namespace
+
 SceneLayout case_layout(const CaseContext& c, json params) {
     const CaseSpec& s = c.spec;
     SceneLayout layout;
@@ -124,10 +155,12 @@ SceneLayout case_layout(const CaseContext& c, json params) {
     for (uint32_t f = 0; f < s.floors; ++f) {
         layout.floors.push_back(
             make_floor_input(choice, s.width, s.height, f, s.floors, s.seed, c.plugin.masks));
+        if (s.relation == Relation::CanvasSize)
+            clear_canvas_edges(layout.floors.back(), s.width, s.height, kCanvasEdgeBand);
         if (!c.plugin.is_global() && (s.plugin_floor < 0 || uint32_t(s.plugin_floor) == f))
-            layout.floor_effects[f].push_back(under_test(c, params));
+            layout.floor_effects[f] = with_neighbours(c, under_test(c, params));
     }
-    if (c.plugin.is_global()) layout.global_effects.push_back(under_test(c, params));
+    if (c.plugin.is_global()) layout.global_effects = with_neighbours(c, under_test(c, params));
     return layout;
 }
 
@@ -160,35 +193,48 @@ Result<Capture> capture_floor(Compositor& comp, uint32_t floor, double time) {
     return capture;
 }
 
-// The composite of floors 0..top before and after the global effects.
-Result<Capture> capture_global(Compositor& comp, uint32_t top, double time) {
-    Capture capture;
-    comp.set_effects_enabled(true, false);
-    auto before = comp.render(top, time);
-    auto input = before ? comp.read_accumulation() : Result<ImageRGBA>(before.error());
+Result<Capture> capture_effect(Compositor& comp, bool global, uint32_t floor, double time,
+                               uint32_t index) {
+    auto run_first = [&](uint32_t count) -> Result<ImageRGBA> {
+        if (global)
+            comp.set_global_effects_run(count);
+        else
+            comp.set_floor_effects_run(count);
+        return plugin_output(comp, global, floor, time);
+    };
+    auto input = run_first(index);
+    auto output = input ? run_first(index + 1) : Result<ImageRGBA>(input.error());
+    comp.set_floor_effects_run(UINT32_MAX);
     comp.set_effects_enabled(true, true);
-    if (!input) return input.error();
-    ACETATE_TRY(comp.render(top, time));
-    auto output = comp.read_accumulation();
     if (!output) return output.error();
-    capture.input = std::move(input.value());
-    capture.output = std::move(output.value());
-    return capture;
+    return Capture{std::move(input.value()), std::move(output.value())};
 }
 
 Result<Capture> capture_global_effect(Compositor& comp, uint32_t top, double time, uint32_t index) {
-    Capture capture;
-    comp.set_global_effects_run(index);
-    auto before = comp.render(top, time);
-    auto input = before ? comp.read_accumulation() : Result<ImageRGBA>(before.error());
-    comp.set_global_effects_run(index + 1);
-    auto after = input ? comp.render(top, time) : Result<FrameStats>(input.error());
-    auto output = after ? comp.read_accumulation() : Result<ImageRGBA>(after.error());
+    return capture_effect(comp, true, top, time, index);
+}
+
+Result<Capture> capture_plugin(Compositor& comp, const CaseContext& c, uint32_t floor) {
+    const bool global = c.plugin.is_global();
+    const auto at = comp.effect_position(global ? std::nullopt : std::optional(floor),
+                                         uint32_t(c.spec.effects_before.size()));
+    if (at.runs) return capture_effect(comp, global, floor, c.spec.time, at.before);
+    // Dropped at load for declaring nothing: its output is its input, after the effects before.
+    if (global)
+        comp.set_global_effects_run(at.before);
+    else
+        comp.set_floor_effects_run(at.before);
+    auto input = plugin_output(comp, global, floor, c.spec.time);
+    comp.set_floor_effects_run(UINT32_MAX);
     comp.set_effects_enabled(true, true);
-    if (!output) return output.error();
-    capture.input = std::move(input.value());
-    capture.output = std::move(output.value());
-    return capture;
+    if (!input) return input.error();
+    return Capture{input.value(), input.value()};
+}
+
+Result<ImageRGBA> plugin_own_output(Compositor& comp, const CaseContext& c, uint32_t floor) {
+    auto capture = capture_plugin(comp, c, floor);
+    if (!capture) return capture.error();
+    return std::move(capture->output);
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "case_runner.hpp"
@@ -48,11 +49,15 @@ Result<ImageRGBA> render_floor(Compositor& comp, uint32_t floor, double time);
 Result<ImageRGBA> plugin_output(Compositor& comp, bool global, uint32_t floor, double time);
 // A floor's target before and after its effects.
 Result<Capture> capture_floor(Compositor& comp, uint32_t floor, double time);
-// The composite of floors 0..top before and after the global effects.
-Result<Capture> capture_global(Compositor& comp, uint32_t top, double time);
-// The same around global effect `index` alone: the composite after the global effects before
-// it, and after it too (each global effect is judged on its own input and output).
+// Effect `index` alone, each judged on its own input and output: the floor's target (or the
+// composite of floors 0..floor) after the effects before it, and after it too.
+Result<Capture> capture_effect(Compositor& comp, bool global, uint32_t floor, double time,
+                               uint32_t index);
 Result<Capture> capture_global_effect(Compositor& comp, uint32_t top, double time, uint32_t index);
+// The plugin under test's own input and output on `floor` (a global one: on the composite of
+// floors 0..floor), between the case's neighbours.
+Result<Capture> capture_plugin(Compositor& comp, const CaseContext& c, uint32_t floor);
+Result<ImageRGBA> plugin_own_output(Compositor& comp, const CaseContext& c, uint32_t floor);
 
 // ---- results ----------------------------------------------------------------------------
 
@@ -84,6 +89,7 @@ uint64_t resident_bytes();
 struct LoadOptions {
     bool checked_builtins = false;       // GLSL with checked min/max/clamp/smoothstep (Undefined)
     bool ignore_declared_reach = false;  // shade as if no reach was declared (the reach check)
+    std::optional<VkFormat> format;      // instead of the case's (the format-agreement relation)
 };
 
 // Writes the layout's scene and loads it, with the case's poison. A scene the host refuses

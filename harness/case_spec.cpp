@@ -30,6 +30,8 @@ constexpr const char* kFloorVariantNames[] = {"standard", "long-names", "unicode
                                               "top-floor-empty"};
 static_assert(std::size(kFloorVariantNames) == kFloorVariantCount);
 constexpr const char* kPoisonNames[] = {"none", "nan", "large", "plain"};
+constexpr const char* kFormatNames[] = {"rgba16f", "rgba32f"};
+constexpr const char* kRelationNames[] = {"none", "canvas-size", "format-agreement"};
 
 template <class Enum, size_t N>
 std::optional<Enum> parse_enum(const char* const (&names)[N], const std::string& name) {
@@ -57,6 +59,12 @@ const char* to_string(MaskFill masks) {
 }
 const char* to_string(Poison poison) {
     return kPoisonNames[int(poison)];
+}
+const char* to_string(TargetFormat format) {
+    return kFormatNames[int(format)];
+}
+const char* to_string(Relation relation) {
+    return kRelationNames[int(relation)];
 }
 
 json to_json(const PluginInfo& info) {
@@ -161,6 +169,10 @@ json to_json(const CaseSpec& s) {
             {"time", s.time},
             {"switches", s.switches},
             {"companions", companions},
+            {"effects_before", s.effects_before},
+            {"effects_after", s.effects_after},
+            {"format", to_string(s.format)},
+            {"relation", to_string(s.relation)},
             {"lights", to_string(s.lights)},
             {"masks", to_string(s.masks)},
             {"floor_variant", to_string(s.floor_variant)},
@@ -193,12 +205,12 @@ Enum enum_field(const json& j, const std::string& path, std::string_view key,
 
 CaseSpec read_case_spec(const json& j, const std::string& path) {
     using namespace json_fields;
-    expect_object(j, path,
-                  {"id",         "description", "kind",   "seed",         "width",  "height",
-                   "pattern",    "floors",      "params", "preset",       "time",   "switches",
-                   "companions", "lights",      "masks",  "plugin_floor", "frames", "prior_loads",
-                   "sweep",      "poison",      "inputs", "floor_variant"},
-                  {"reference", "scene_file"});
+    expect_object(
+        j, path, {"id",         "description", "kind",   "seed",         "width",  "height",
+                  "pattern",    "floors",      "params", "preset",       "time",   "switches",
+                  "companions", "lights",      "masks",  "plugin_floor", "frames", "prior_loads",
+                  "sweep",      "poison",      "inputs", "floor_variant"},
+        {"reference", "scene_file", "effects_before", "effects_after", "format", "relation"});
     CaseSpec s;
     s.id = text(j, path, "id");
     s.description = text(j, path, "description");
@@ -208,6 +220,11 @@ CaseSpec read_case_spec(const json& j, const std::string& path) {
     s.masks = enum_field<MaskFill>(j, path, "masks", kMaskNames);
     s.floor_variant = enum_field<FloorVariant>(j, path, "floor_variant", kFloorVariantNames);
     s.poison = enum_field<Poison>(j, path, "poison", kPoisonNames);
+    if (optional(j, "format")) s.format = enum_field<TargetFormat>(j, path, "format", kFormatNames);
+    if (optional(j, "relation"))
+        s.relation = enum_field<Relation>(j, path, "relation", kRelationNames);
+    if (optional(j, "effects_before")) s.effects_before = texts(j, path, "effects_before");
+    if (optional(j, "effects_after")) s.effects_after = texts(j, path, "effects_after");
     const int64_t plugin_floor = integer(j, path, "plugin_floor");
     if (plugin_floor < INT32_MIN || plugin_floor > INT32_MAX)
         fail(field(path, "plugin_floor"), fmt::format("is out of range, got {}", plugin_floor));

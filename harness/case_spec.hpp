@@ -106,6 +106,16 @@ const char* to_string(FloorVariant floors);
 enum class Poison { None, NaN, Large, Plain };
 const char* to_string(Poison poison);
 
+// The format of the floors' targets, their tiles and the intermediate targets an effect
+// declares in the floor's format: what a host picks (SceneOptions::precision).
+enum class TargetFormat { Rgba16f, Rgba32f };
+const char* to_string(TargetFormat format);
+// A relation that needs no oracle (relation_checks.cpp), checked in a contract case besides the
+// contract: the plugin's floors on a canvas grown to the right and below are unchanged; the
+// same scene in rgba16f and rgba32f agrees within half precision.
+enum class Relation { None, CanvasSize, FormatAgreement };
+const char* to_string(Relation relation);
+
 // Another plugin an integration case runs beside the one under test.
 struct CompanionPlugin {
     std::string id, file, scope;
@@ -127,7 +137,13 @@ struct CaseSpec {
     std::string preset;
     double time = 0;        // seconds; double, as a host passes it (a fraction can round up to 1)
     uint32_t switches = 0;  // StateIsolation: floor switches for the memory check
-    std::vector<CompanionPlugin> companions;  // Integration
+    std::vector<CompanionPlugin> companions;  // Integration; and the neighbours' files
+    // Contexts (docs/harness.md, "Contexts"): the harness's neighbour effects (neighbours.hpp)
+    // placed before and after the plugin on each floor that carries it (or among the global
+    // effects), by id. The contract is judged on the plugin's own input and output.
+    std::vector<std::string> effects_before, effects_after;
+    TargetFormat format = TargetFormat::Rgba16f;
+    Relation relation = Relation::None;  // Contract
 
     // The rest of the input model (docs/harness.md, "The input model").
     LightSet lights = LightSet::Standard;
@@ -155,13 +171,19 @@ Result<CaseSpec> case_spec_from_json(const nlohmann::json& json, std::string_vie
 CaseSpec read_case_spec(const nlohmann::json& json, const std::string& path);
 
 // The cases of one run (case_plan.cpp): each dimension of the input model varied on its own,
-// then combinations from a Latin hypercube. Strictness 1..10 sets how many combinations, sweep
-// points, frames and floor switches, and how large the large size; `run_seed` makes every
-// case's seed (and so its inputs and drawn values) reproducible. `integration` adds the
-// INTEGRATED stage's cases.
+// then combinations: pairwise, or from a Latin hypercube at low strictness. Strictness 1..10 sets
+// how many combinations, sweep points, frames and floor switches, and how large the large size;
+// `run_seed` makes every case's seed (and so its inputs and drawn values) reproducible.
+// `integration` adds the INTEGRATED stage's cases.
 std::vector<CaseSpec> plan_cases(const PluginInfo& plugin, int strictness, uint64_t run_seed,
                                  bool alpha_stage, bool integration_stage,
                                  const std::vector<CompanionPlugin>& companions);
+
+// From this strictness on, the combined cases are a pairwise covering array over every
+// dimension (combinations.hpp); below it, Latin hypercube points.
+inline constexpr int kPairwiseStrictness = 4;
+// One line for the report: how this run combines the dimensions (strength, pairs, cases).
+std::string combinations_summary(const PluginInfo& plugin, int strictness, uint64_t run_seed);
 
 // SplitMix64's mixing function: a well-spread 64-bit hash of `x`.
 uint64_t splitmix64(uint64_t x);

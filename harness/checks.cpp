@@ -9,7 +9,8 @@ namespace {
 
 constexpr std::string_view kContractCases =
     "every contract case (sizes, inputs, floors, lights, masks, params, time, frames, loads, "
-    "combined), and on the plugin's own floors in the integration cases";
+    "contexts, formats, relations, combined), and on the plugin's own floors in the integration "
+    "cases";
 
 constexpr std::array kChecks = {
     CheckInfo{"premultiplied", "3", kContractCases, true, true,
@@ -30,7 +31,14 @@ constexpr std::array kChecks = {
     CheckInfo{"undefined-results", "4", "every contract case (each value of a sweep too)", true,
               true,
               "a pixel finite as compiled but not when the GLSL is compiled with checked `min`, "
-              "`max`, `clamp` and `smoothstep`"},
+              "`max`, `clamp`, `smoothstep` and `texelFetch` (NaN outside the texture)"},
+    CheckInfo{"canvas-size", "8", "`relations/canvas-size` (floor effects)", true, true,
+              "a channel of the plugin's floors more than one half-float unit from the same "
+              "floors on a canvas grown by 61x43 pixels to the right and below (the floors are "
+              "transparent within 8 pixels of those edges)"},
+    CheckInfo{"format-agreement", "8", "`formats/rgba32f`", true, true,
+              "a channel in rgba32f more than 8 half-float units (at the larger of the value and "
+              "the input's largest) from the same scene in rgba16f"},
     CheckInfo{"process-hygiene", "7", "every case", true, true,
               "a plugin call (load, build, unload) that changed the floating-point environment, "
               "a signal disposition or the signal mask, an environment variable, the open "

@@ -9,6 +9,7 @@
 
 #include "case_kinds.hpp"
 #include "input_model.hpp"
+#include "relation_checks.hpp"
 
 namespace acetate::harness {
 
@@ -42,14 +43,15 @@ Result<std::optional<SceneChecks>> check_scene(const CaseContext& c, Session& s,
     ACETATE_TRY(render_earlier_frames(**comp, c));
     std::vector<Capture> captures;
     std::vector<int64_t> floor_of;
+    // The plugin's own input and output (between its neighbours, in a context case).
     if (c.plugin.is_global()) {
-        auto capture = capture_global(**comp, c.spec.floors - 1, c.spec.time);
+        auto capture = capture_plugin(**comp, c, c.spec.floors - 1);
         if (!capture) return capture.error();
         captures.push_back(std::move(capture.value()));
         floor_of.push_back(-1);
     } else {
         for (uint32_t f : plugin_floors(c)) {
-            auto capture = capture_floor(**comp, f, c.spec.time);
+            auto capture = capture_plugin(**comp, c, f);
             if (!capture) return capture.error();
             captures.push_back(std::move(capture.value()));
             floor_of.push_back(f);
@@ -79,7 +81,14 @@ Result<std::optional<SceneChecks>> check_scene(const CaseContext& c, Session& s,
         if (!undefined) return undefined.error();
         out.checks.push_back(std::move(undefined.value()));
     }
-    if (!c.plugin.is_global() && (**comp).declares_reach()) {
+    if (c.spec.relation != Relation::None) {
+        auto relation =
+            check_relation(c, s, w, params, name, floors, out.heat[to_string(c.spec.relation)]);
+        if (!relation) return relation.error();
+        out.checks.push_back(std::move(relation.value()));
+    }
+    // Only an expanding plugin declares a reach: one a neighbour declared is not the plugin's.
+    if (!c.plugin.is_global() && c.plugin.is_expanding() && (**comp).declares_reach()) {
         auto reach = check_reach(c, s, w, params, name, floors, out.heat["reach"]);
         if (!reach) return reach.error();
         out.checks.push_back(std::move(reach.value()));
@@ -104,7 +113,7 @@ Result<CheckResult> check_reach(const CaseContext& c, Session& s, CaseWriter& w,
     if (!*comp) return reach.finish();  // the load failure is recorded already
     ACETATE_TRY(render_earlier_frames(**comp, c));
     for (const FloorImages& floor : clipped) {
-        auto capture = capture_floor(**comp, uint32_t(floor.floor), c.spec.time);
+        auto capture = capture_plugin(**comp, c, uint32_t(floor.floor));
         if (!capture) return capture.error();
         const ImageRGBA& whole = capture->output;
         for (uint32_t y = 0; y < whole.height; ++y)
@@ -121,19 +130,19 @@ Result<CheckResult> check_reach(const CaseContext& c, Session& s, CaseWriter& w,
     return reach.finish();
 }
 
-// The scene once more with the plugin's GLSL compiled with checked min, max, clamp and
-// smoothstep, which give NaN for a NaN operand or inverted edges (the same earlier frames, time
-// and floors). A pixel finite as compiled (`plain`) and not finite when checked is a result
-// the GLSL leaves undefined: llvmpipe launders a NaN through min/max/clamp into a finite
-// value, another driver may not.
+// The scene once more with the plugin's GLSL compiled with checked min, max, clamp,
+// smoothstep and texelFetch, which give NaN for a NaN operand, inverted edges or a texel
+// outside the texture (the same earlier frames, time and floors). A pixel finite as compiled
+// (`plain`) and not finite when checked is a result the GLSL leaves undefined: llvmpipe launders a
+// NaN through min/max/clamp into a finite value, another driver may not.
 Result<CheckResult> check_undefined(const CaseContext& c, Session& s, CaseWriter& w,
                                     const json& params, const std::string& name,
                                     EffectPassCounts passes, const std::vector<FloorImages>& plain,
                                     std::map<int64_t, ImageRGBA>& heat) {
     CheckAccumulator undefined(
         "undefined-results",
-        fmt::format("no NaN operand of min, max or clamp and no smoothstep with edge0 >= edge1 "
-                    "in the {} GLSL pass{}{}",
+        fmt::format("no NaN operand of min, max or clamp, no smoothstep with edge0 >= edge1 "
+                    "and no texelFetch outside its texture in the {} GLSL pass{}{}",
                     passes.glsl, passes.glsl == 1 ? "" : "es",
                     passes.spirv ? fmt::format("; {} pass{} given as SPIR-V could not be checked",
                                                passes.spirv, passes.spirv == 1 ? "" : "es")
@@ -160,8 +169,8 @@ Result<CheckResult> check_undefined(const CaseContext& c, Session& s, CaseWriter
     ACETATE_TRY(render_earlier_frames(**comp, c));
     for (const FloorImages& floor : plain) {
         const bool global = floor.floor < 0;
-        auto checked = plugin_output(
-            **comp, global, global ? c.spec.floors - 1 : uint32_t(floor.floor), c.spec.time);
+        auto checked =
+            plugin_own_output(**comp, c, global ? c.spec.floors - 1 : uint32_t(floor.floor));
         if (!checked) return checked.error();
         const ImageRGBA& as_compiled = *floor.output;
         const FloorImages where{floor.floor, &as_compiled, &checked.value()};
@@ -176,7 +185,8 @@ Result<CheckResult> check_undefined(const CaseContext& c, Session& s, CaseWriter
                     undefined.violation(
                         where, x, y,
                         fmt::format("{} here only because min, max, clamp or smoothstep was "
-                                    "given a NaN or inverted edges; as compiled it gave {}",
+                                    "given a NaN or inverted edges, or texelFetch read outside "
+                                    "its texture; as compiled it gave {}",
                                     format_rgba(b), format_rgba(a)));
             }
     }

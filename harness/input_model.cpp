@@ -60,6 +60,10 @@ const std::vector<InputDimension>& input_dimensions() {
         {"frames", "frames rendered within one load before the one checked"},
         {"loads", "other scenes loaded and rendered in the process before this one"},
         {"poison", "what fills memory the plugin may read before writing it"},
+        {"neighbours",
+         "the effects before and after the plugin on its floor (or among the global effects): "
+         "none, or the harness's coverage-expanding spread"},
+        {"target format", "the format of the floors' targets and tiles: rgba16f or rgba32f"},
     };
     return dimensions;
 }
@@ -82,6 +86,11 @@ std::map<std::string, std::string> describe_inputs(const CaseSpec& s, const Plug
     set("frames", std::to_string(s.frames));
     set("loads", std::to_string(s.prior_loads));
     set("poison", to_string(s.poison));
+    std::string neighbours;
+    for (const std::string& id : s.effects_before) neighbours += id + " before; ";
+    for (const std::string& id : s.effects_after) neighbours += id + " after; ";
+    set("neighbours", neighbours.empty() ? "none" : neighbours.substr(0, neighbours.size() - 2));
+    set("target format", to_string(s.format));
     return in;
 }
 

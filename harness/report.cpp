@@ -260,6 +260,7 @@ json to_json(const ValidationReport& report) {
                 {"stage_before", report.stage_before},
                 {"stage_after", report.stage_after},
                 {"strictness", report.strictness},
+                {"combinations", report.combinations},
                 {"seed", report.seed},
                 {"started_at", report.started_at},
                 {"seconds", number_to_json(report.seconds)},

@@ -114,7 +114,8 @@ struct ValidationReport {
     std::string stage_before, stage_after;  // registry stages, e.g. "REVIEWED"
     int strictness = 5;
     uint64_t seed = 0;
-    std::string started_at;  // ISO-8601 UTC
+    std::string combinations;  // how the dimensions were combined (combinations_summary)
+    std::string started_at;    // ISO-8601 UTC
     double seconds = 0;
     std::vector<StageRun> stages;
     std::vector<CaseResult> cases;

@@ -289,6 +289,7 @@ class HtmlPage {
         fact("Started at", report_.started_at);
         fact("Duration", seconds_text(report_.seconds));
         fact("Strictness", std::to_string(report_.strictness));
+        if (!report_.combinations.empty()) fact("Combinations", report_.combinations);
         fact("Seed", std::to_string(report_.seed));
         fact("Registry stage",
              fmt::format("{} → {}", report_.stage_before.empty() ? "—" : report_.stage_before,

@@ -19,6 +19,7 @@
 #include "core/child_process.hpp"
 #include "core/input_file.hpp"
 #include "core/strict_json.hpp"
+#include "neighbours.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "references.hpp"
 #include "registry_location.hpp"
@@ -346,6 +347,8 @@ int run_validate(const ValidateOptions& o) {
         plugin.scope.c_str(), plugin.coverage.c_str(), o.plugin.string().c_str(),
         o.registry.string().c_str(), to_string(before), o.strictness, (unsigned long long)o.seed,
         o.jobs);
+    report.combinations = combinations_summary(plugin, o.strictness, o.seed);
+    std::printf("combinations: %s\n", report.combinations.c_str());
     if (o.repeat > 1 || o.shuffle_seed)
         std::printf(
             "every case %u time%s, each in a fresh process%s\n", o.repeat, o.repeat == 1 ? "" : "s",
@@ -477,6 +480,8 @@ int run_validate(const ValidateOptions& o) {
     }
     auto alpha_cases = select(plan_cases(plugin, o.strictness, o.seed, true, false, {}));
     stale_references = attach_references(alpha_cases, references.value(), plugin);
+    if (auto attached = attach_neighbours(alpha_cases, neighbour_directory(o.self)); !attached)
+        return fail_run(attached.error().message);
     if (!references.value())
         std::printf("references: none blessed for %s in %s (the reference cases only render)\n",
                     plugin.id.c_str(), o.references.string().c_str());

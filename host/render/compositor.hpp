@@ -57,7 +57,8 @@ struct CompositorOptions {
     // had declared a reach (set_reach), so what an effect draws past its reach shows.
     bool ignore_declared_reach = false;
     // GLSL passes are compiled with min, max, clamp and smoothstep that return NaN for a NaN
-    // operand, and smoothstep also for edge0 >= edge1 (checked_builtins_glsl()), so the
+    // operand, smoothstep also for edge0 >= edge1, and texelFetch for a texel outside its
+    // texture (checked_builtins_glsl()), so the
     // harness's `finite` check sees results a driver may hide. Per scene rather than in
     // RendererOptions: the pool keys shaders by their source, so checked and unchecked
     // variants live side by side in one renderer, and the harness sets both options together.
@@ -116,6 +117,19 @@ class Compositor {
     // composite then shows what global effect `count` is given (the harness judges each global
     // effect on its own input and output). No allocation.
     void set_global_effects_run(uint32_t count) { global_effects_run_ = count; }
+    // Runs only the first `count` effects of each floor, for later frames: the floor's target
+    // then shows what effect `count` is given (the harness judges an effect with neighbours on
+    // its floor on its own input and output). No allocation.
+    void set_floor_effects_run(uint32_t count) { floor_effects_run_ = count; }
+    // How many of the floor's (or, without a floor, the global) effects run before the scene's
+    // effect `index`, and whether that effect runs at all: an instance that declared nothing
+    // is dropped at load (water on a floor without water), so scene indices and positions in
+    // the run differ. For the counts above.
+    struct EffectPosition {
+        uint32_t before = 0;  // instances before it that run
+        bool runs = false;    // false: dropped, it changes nothing
+    };
+    EffectPosition effect_position(std::optional<uint32_t> floor, uint32_t index) const;
 
     // Float readbacks for tests and file output (premultiplied, linear).
     Result<ImageRGBA> read_output();
@@ -231,6 +245,7 @@ class Compositor {
     std::string timer_warning_;
     bool effects_enabled_ = true;
     uint32_t global_effects_run_ = UINT32_MAX;  // how many of global_effects_ run
+    uint32_t floor_effects_run_ = UINT32_MAX;   // how many of each floor's effects run
     // The floors' mask composites for build() when set_effect_ref runs it again: composited
     // from the files on the first such call that needs them, then kept (a load keeps none).
     std::optional<SceneMasks> live_masks_;

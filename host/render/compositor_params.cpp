@@ -28,6 +28,17 @@ Result<EffectRef> Compositor::effect_ref(std::optional<uint32_t> floor, uint32_t
     return refs[index];
 }
 
+Compositor::EffectPosition Compositor::effect_position(std::optional<uint32_t> floor,
+                                                       uint32_t index) const {
+    EffectPosition position;
+    const auto& instances = floor ? floor_effects_.at(*floor) : global_effects_;
+    for (const auto& instance : instances) {
+        if (instance->scene_index < index) ++position.before;
+        if (instance->scene_index == index) position.runs = true;
+    }
+    return position;
+}
+
 Result<bool> Compositor::set_effect_ref(std::optional<uint32_t> floor, uint32_t index,
                                         const EffectRef& ref) {
     auto current = effect_ref(floor, index);

@@ -74,7 +74,18 @@ std::string checked_builtins_glsl() {
                 "}}\n",
                 t, o);
     }
+    // texelFetch outside the texture (or its mip levels) is undefined: lavapipe reads zeros,
+    // which look like a transparent border, another driver may read anything. Checked, it
+    // reads NaN. Every input a pass names is a float sampler2D.
     out +=
+        "vec4 acetate_checked_texelFetch(sampler2D s, ivec2 p, int lod) {\n"
+        "    if (lod < 0 || lod >= textureQueryLevels(s)) return vec4(acetate_nan());\n"
+        "    ivec2 size = textureSize(s, lod);\n"
+        "    if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size)))\n"
+        "        return vec4(acetate_nan());\n"
+        "    return texelFetch(s, p, lod);\n}\n";
+    out +=
+        "#define texelFetch(s, p, lod) acetate_checked_texelFetch(s, p, lod)\n"
         "#define min(a, b) acetate_checked_min(a, b)\n"
         "#define max(a, b) acetate_checked_max(a, b)\n"
         "#define clamp(x, lo, hi) acetate_checked_clamp(x, lo, hi)\n"

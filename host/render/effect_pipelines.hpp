@@ -94,8 +94,8 @@ enum class FrameBlockDeclaration { Storage, Uniform };
 // The GLSL the host puts before a pass's source: version, the AcetateFrame block with a
 // param_<name> macro per parameter and phase_<name> per phase, one sampler2D per input (named
 // as the pass chose) with its acetate_size_<name>, floor_data, the lights block, out_color.
-// With `checked_builtins`, also checked_builtins_glsl(), so min, max, clamp and smoothstep in
-// the pass's own text are the checked ones. Then the pass's defines and `#line 1`.
+// With `checked_builtins`, also checked_builtins_glsl(), so min, max, clamp, smoothstep and
+// texelFetch in the pass's own text are the checked ones. Then the pass's defines and `#line 1`.
 std::string effect_glsl_preamble(const EffectDescriptor& effect, const GraphPass& pass,
                                  const std::vector<GraphPhase>& phases,
                                  bool checked_builtins = false,

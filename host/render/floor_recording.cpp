@@ -153,7 +153,7 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     if (timer_) timer_->mark(cmd, fmt::format("floor {} tiles", step.floor));
 
     GpuImage* floor = &colour;
-    if (!floor_effects_[step.floor].empty() && effects_enabled_)
+    if (!floor_effects_[step.floor].empty() && effects_enabled_ && floor_effects_run_ > 0)
         floor = record_floor_effects(cmd, step, rects, expanding, time, report);
     viewed_floor_ = floor;
     record_composite(cmd, step, *floor, rects, expanding, report);
@@ -165,7 +165,10 @@ GpuImage* Compositor::record_floor_effects(VkCommandBuffer cmd, const FloorStep&
     GpuImage* current = targets_.floor_colour();
     GpuImage* next = targets_.floor_pingpong();
     clear_image(cmd, *next);
-    for (const auto& effect : floor_effects_[step.floor]) {
+    const auto& effects = floor_effects_[step.floor];
+    const size_t run = std::min<size_t>(effects.size(), floor_effects_run_);
+    for (size_t i = 0; i < run; ++i) {
+        const auto& effect = effects[i];
         EffectIo io;
         io.previous = current;
         io.result = next;

@@ -1,6 +1,7 @@
 // Compositor::necessary_pixels (compositor.hpp): the floor of what any renderer of this frame
 // must shade, so FrameStats::pixels_shaded can be judged against it.
 #include <algorithm>
+#include <span>
 
 #include "render/compositor.hpp"
 
@@ -21,8 +22,10 @@ uint64_t Compositor::necessary_pixels(uint32_t active_floor) const {
             pixels += uint64_t(shaded.area());  // each layer's pixels are blended once
             covered.push_back(shaded);
         }
-        const auto& effects = floor_effects_[step.floor];
-        if (effects.empty() || !effects_enabled_) continue;
+        const auto& all_effects = floor_effects_[step.floor];
+        const size_t run = std::min<size_t>(all_effects.size(), floor_effects_run_);
+        if (run == 0 || !effects_enabled_) continue;
+        const std::span effects(all_effects.data(), run);
         // What the floor's effects may change: its tiles' pixels, each grown by the reach the
         // expanding effects declared (all of the canvas for one that declared none).
         int64_t reach = 0;

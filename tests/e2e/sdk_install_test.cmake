@@ -115,6 +115,8 @@ foreach(path
     ${LIBDIR}/cmake/Acetate/AcetateEffect.cmake
     ${LIBDIR}/cmake/Acetate/AcetateEmbedGlsl.cmake
     bin/acetate-harness
+    ${LIBDIR}/acetate/harness-neighbours/spread_floor.so
+    ${LIBDIR}/acetate/harness-neighbours/spread_global.so
     share/acetate/validation/signoffs.json
     share/acetate/validation/allowed_signers
     share/acetate/validation/revoked_keys

@@ -323,6 +323,31 @@ void fraction_below_one(const HarnessRun& run) {
     EXPECT_EQ((*c)["verdict"], "PASS") << c->dump(2);
 }
 
+// clears_outside_coverage: alpha the spread put past the floor's tiles is erased, and only
+// there: after the spread neighbour.
+void clears_outside_coverage(const HarnessRun& run) {
+    fails_only_where(
+        run, "coverage", {"contexts/after-spread"},
+        [](const json&, const json& spec) {
+            return !spec.value("effects_before", json::array()).empty();
+        },
+        "alpha");
+}
+// canvas_fraction_falloff: fails the canvas-size relation, which only its own case runs.
+void canvas_fraction_falloff(const HarnessRun& run) {
+    fails_only_where(
+        run, "canvas-size", {"relations/canvas-size"},
+        [](const json&, const json& spec) { return spec.value("relation", "") == "canvas-size"; },
+        "on the grown canvas");
+}
+// half_float_positions: rgba16f and rgba32f disagree, in the one case that compares them.
+void half_float_positions(const HarnessRun& run) {
+    fails_only_where(
+        run, "format-agreement", {"formats/rgba32f"},
+        [](const json&, const json& spec) { return spec.value("format", "") == "rgba32f"; },
+        "in rgba16f");
+}
+
 // declared_reach: the reach check runs (the plugin declares a reach) and passes everywhere.
 void reach_checked(const HarnessRun& run) {
     ASSERT_TRUE(run.check_cases.count("reach")) << "the reach check never ran";

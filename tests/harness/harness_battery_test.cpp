@@ -349,7 +349,12 @@ const std::vector<Expectation> kPlugins = {
     {"alpha_half_step", {"coverage"}, {}, false, alpha_half_step},
     {"nan_pixel", {"finite"}, {}, false, nan_pixel},
     // State isolation is not judged for a plugin that is not deterministic (validate.cpp).
-    {"nondeterministic", {"determinism"}, {"state-isolation"}, false, nondeterministic},
+    // Its loads differ, so the relations, which compare loads, are not judged either.
+    {"nondeterministic",
+     {"determinism"},
+     {"state-isolation", "canvas-size", "format-agreement"},
+     false,
+     nondeterministic},
     {"crash_second_floor", {}, {}, true, crash_second_floor},
     {"hangs_at_max", {}, {}, true, hangs_at_max, kHangTimeoutSeconds},
     // determinism/after-history renders floor 1 before floor 0 in its earlier frames, so the
@@ -364,11 +369,14 @@ const std::vector<Expectation> kPlugins = {
     {"periodic_azimuth", {}, {}, false, periodic_azimuth},
     {"undeclared_expansion", {"coverage"}, {}, false, undeclared_expansion},
     // One plugin per dimension of the input model, each caught in that dimension's cases only.
-    {"odd_width_even_height", {"finite"}, {}, false, odd_width_even_height},
+    // A lens centred on the canvas: a floor effect measuring in fractions of the canvas, which
+    // rule 8 forbids too (canvas-size); the NaN is its input-model evidence.
+    {"odd_width_even_height", {"finite", "canvas-size"}, {}, false, odd_width_even_height},
     {"high_floor_index", {"finite"}, {}, false, high_floor_index},
     {"no_lights", {"finite"}, {}, false, no_lights},
     {"many_lights", {"load"}, {}, false, many_lights},
-    {"off_canvas_light", {"finite"}, {}, false, off_canvas_light},
+    // A flare across the canvas's centre, in canvas coordinates: canvas-size fails too.
+    {"off_canvas_light", {"finite", "canvas-size"}, {}, false, off_canvas_light},
     {"tiny_radius", {"finite"}, {}, false, tiny_radius},
     {"huge_radius", {"finite"}, {}, false, huge_radius},
     {"full_mask", {"finite"}, {}, false, full_mask},
@@ -391,6 +399,10 @@ const std::vector<Expectation> kPlugins = {
     {"empty_floor_bounds", {}, {}, true, empty_floor_bounds},
     // A control: relies on the host keeping acetate_time_fraction below 1.
     {"fraction_below_one", {}, {}, false, fraction_below_one},
+    // One plugin per context and relation (docs/harness.md, "Contexts and relations").
+    {"clears_outside_coverage", {"coverage"}, {}, false, clears_outside_coverage},
+    {"canvas_fraction_falloff", {"canvas-size"}, {}, false, canvas_fraction_falloff},
+    {"half_float_positions", {"format-agreement"}, {}, false, half_float_positions},
     // One plugin per rule the harness gained.
     {"negative_colour", {"non-negative"}, {}, false, negative_colour},
     {"build_leak", {"memory"}, {}, false, build_leak},
@@ -405,6 +417,7 @@ const std::vector<Expectation> kPlugins = {
     {"hidden_nan", {"undefined-results"}, {}, false, undefined_everywhere},
     {"inverted_smoothstep", {"undefined-results"}, {}, false, undefined_everywhere},
     {"undefined_at_max", {"undefined-results"}, {}, false, undefined_away_from_defaults},
+    {"unclamped_fetch", {"undefined-results"}, {}, false, undefined_everywhere},
     // ABI 1.1: a declared reach is checked against the same floor shaded over the whole canvas.
     {"declared_reach", {}, {}, false, reach_checked},
     {"short_reach", {"reach"}, {}, false, reach_cut_off},

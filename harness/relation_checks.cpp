@@ -1,0 +1,163 @@
+#include "relation_checks.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace acetate::harness {
+
+using nlohmann::json;
+
+float half_ulp(float v) {
+    const float a = std::fabs(v);
+    if (!(a >= 0x1p-14f)) return 0x1p-24f;  // subnormal halves are 2^-24 apart
+    int exponent = 0;
+    std::frexp(a, &exponent);                // a = m * 2^exponent, m in [0.5, 1)
+    return std::ldexp(1.0f, exponent - 11);  // 10 fraction bits after the leading one
+}
+
+namespace {
+
+// The plugin's outputs, floor by floor as `floors` lists them, in a scene loaded from `layout`.
+Result<std::optional<std::vector<ImageRGBA>>> outputs_in(const CaseContext& c, Session& s,
+                                                         CaseWriter& w, const SceneLayout& layout,
+                                                         const std::string& name,
+                                                         const std::vector<FloorImages>& floors,
+                                                         const LoadOptions& how) {
+    auto comp = load_layout(c, s, w, layout, name, how);
+    if (!comp) return comp.error();
+    if (!*comp) return std::optional<std::vector<ImageRGBA>>();
+    ACETATE_TRY(render_earlier_frames(**comp, c));
+    std::vector<ImageRGBA> out;
+    for (const FloorImages& floor : floors) {
+        auto image = plugin_own_output(**comp, c,
+                                       floor.floor < 0 ? c.spec.floors - 1 : uint32_t(floor.floor));
+        if (!image) return image.error();
+        out.push_back(std::move(image.value()));
+    }
+    return std::optional(std::move(out));
+}
+
+// Every pixel of `a` (the case's output) whose channel differs from `b`'s by more than
+// `tolerance(value)` is a violation, `b` read at the same scene pixel.
+template <class Tolerance>
+void compare_within(const FloorImages& floor, const ImageRGBA& b, Tolerance tolerance,
+                    const std::string& other, CheckAccumulator& out) {
+    const ImageRGBA& a = *floor.output;
+    for (uint32_t y = 0; y < a.height; ++y)
+        for (uint32_t x = 0; x < a.width; ++x) {
+            const float *p = a.at(x, y), *q = b.at(x, y);
+            for (int k = 0; k < 4; ++k) {
+                if (std::isnan(p[k]) || std::isnan(q[k])) continue;  // `finite` says so
+                const float bound = tolerance(std::max(std::fabs(p[k]), std::fabs(q[k])));
+                if (!(std::fabs(p[k] - q[k]) <= bound)) {
+                    out.violation(floor, x, y,
+                                  fmt::format("{} here, {} {}: more than {:g} apart in a channel",
+                                              format_rgba(p), format_rgba(q), other, bound));
+                    break;
+                }
+            }
+        }
+}
+
+Result<CheckResult> canvas_size(const CaseContext& c, Session& s, CaseWriter& w, const json& params,
+                                const std::string& name, const std::vector<FloorImages>& floors,
+                                std::map<int64_t, ImageRGBA>& heat) {
+    SceneLayout grown = case_layout(c, params);
+    grown.width += kCanvasGrowth[0];
+    grown.height += kCanvasGrowth[1];
+    CheckAccumulator relation(
+        "canvas-size",
+        fmt::format("the same floors on a canvas grown to {}x{} give the same pixels on the "
+                    "original {}x{} (within one half-float unit)",
+                    grown.width, grown.height, c.spec.width, c.spec.height));
+    auto large = outputs_in(c, s, w, grown, name + ".grown", floors, {});
+    if (!large) return large.error();
+    if (!*large) return relation.finish();  // the load failure is recorded already
+    for (size_t i = 0; i < floors.size(); ++i) {
+        // Why one unit: a sampling position normalized by the canvas size rounds differently
+        // on another canvas (float32), which can move an output rounded to half by one unit.
+        ImageRGBA& g = (**large)[i];
+        ImageRGBA cropped(c.spec.width, c.spec.height);
+        for (uint32_t y = 0; y < c.spec.height; ++y)
+            std::copy_n(g.at(0, y), 4 * c.spec.width, cropped.at(0, y));
+        compare_within(floors[i], cropped, half_ulp, "on the grown canvas", relation);
+    }
+    heat = relation.heat_maps();
+    return relation.finish();
+}
+
+Result<CheckResult> format_agreement(const CaseContext& c, Session& s, CaseWriter& w,
+                                     const json& params, const std::string& name,
+                                     const std::vector<FloorImages>& floors,
+                                     std::map<int64_t, ImageRGBA>& heat) {
+    // The case runs in rgba32f; its inputs are rounded to half, so both formats start alike.
+    CheckAccumulator relation(
+        "format-agreement",
+        fmt::format("rgba32f and rgba16f agree within {} half-float units", kFormatAgreementUnits));
+    LoadOptions how;
+    how.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    auto half = outputs_in(c, s, w, case_layout(c, params), name + ".rgba16f", floors, how);
+    if (!half) return half.error();
+    if (!*half) return relation.finish();
+    for (size_t i = 0; i < floors.size(); ++i) {
+        // Why relative to the input's largest value: a target of the floor's format rounds each
+        // value to 2^-11 of its size, and an effect that combines pixels (a blur, a pyramid)
+        // carries the rounding of the largest values it combines into its small outputs.
+        float largest = 0;
+        for (float v : floors[i].input->pixels)
+            if (std::isfinite(v)) largest = std::max(largest, std::fabs(v));
+        compare_within(
+            floors[i], (**half)[i],
+            [largest](float v) { return kFormatAgreementUnits * half_ulp(std::max(v, largest)); },
+            "in rgba16f", relation);
+    }
+    heat = relation.heat_maps();
+    return relation.finish();
+}
+
+// Whether a second load of the case's own scene gives the plugin's outputs bit for bit: a
+// relation compares loads, so it means nothing for a plugin whose loads differ anyway (which
+// `determinism` reports).
+Result<std::optional<bool>> loads_agree(const CaseContext& c, Session& s, CaseWriter& w,
+                                        const json& params, const std::string& name,
+                                        const std::vector<FloorImages>& floors) {
+    auto again = outputs_in(c, s, w, case_layout(c, params), name + ".again", floors, {});
+    if (!again) return again.error();
+    if (!*again) return std::optional<bool>();
+    for (size_t i = 0; i < floors.size(); ++i)
+        if (compare_exact(*floors[i].output, (**again)[i], floors[i].floor).pixels)
+            return std::optional(false);
+    return std::optional(true);
+}
+
+}  // namespace
+
+Result<CheckResult> check_relation(const CaseContext& c, Session& s, CaseWriter& w,
+                                   const json& params, const std::string& name,
+                                   const std::vector<FloorImages>& floors,
+                                   std::map<int64_t, ImageRGBA>& heat) {
+    auto agree = loads_agree(c, s, w, params, name, floors);
+    if (!agree) return agree.error();
+    if (!*agree || !**agree) {
+        CheckResult skipped;
+        skipped.check = to_string(c.spec.relation);
+        skipped.verdict = Verdict::Skip;
+        skipped.message = *agree ? "not judged: a second load of the same scene rendered the "
+                                   "plugin differently (see determinism)"
+                                 : "not judged: the scene did not load again";
+        return skipped;
+    }
+    switch (c.spec.relation) {
+        case Relation::CanvasSize:
+            return canvas_size(c, s, w, params, name, floors, heat);
+        case Relation::FormatAgreement:
+            return format_agreement(c, s, w, params, name, floors, heat);
+        case Relation::None:
+            break;
+    }
+    return make_error(ErrorCode::InvalidInput, "check_relation: the case names no relation");
+}
+
+}  // namespace acetate::harness

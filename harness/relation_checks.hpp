@@ -1,0 +1,44 @@
+#pragma once
+// Relations that need no oracle (docs/harness.md, "Relations"): the plugin's output in the
+// case's scene against its output in a related scene, with a stated tolerance. A contract case
+// whose spec names a relation runs it beside the contract checks.
+//
+// - canvas-size (a floor effect): the same floors on a canvas grown to the right and below give
+//   the same pixels on the original canvas. The case's floors are transparent along those two
+//   edges, so what lies past them reads the same either way; an effect that measures distances
+//   in fractions of the canvas (a blur radius of 3% of its width) fails.
+// - format-agreement: the scene in rgba32f and in rgba16f agree within half precision; an
+//   effect that keeps data a 16-bit float cannot hold (pixel positions past 2048) in a target
+//   of the floor's format fails.
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "case_session.hpp"
+
+namespace acetate::harness {
+
+// The case's floors are transparent this many pixels from the canvas's right and bottom edges
+// (case_layout), and the canvas grows by this much for canvas-size.
+inline constexpr uint32_t kCanvasEdgeBand = 8;
+inline constexpr uint32_t kCanvasGrowth[2] = {61, 43};
+// How far rgba32f and rgba16f may drift apart, in units in the last place of a half float at
+// the larger of the value and the input's largest value. The output's own rounding is half a
+// unit; each pass through a target of the floor's format, and each blend onto one, rounds
+// again, and an effect can amplify that. Of the shipped plugins fire goes furthest, 4.7 units
+// over six seeds: its particles are blended one onto another.
+inline constexpr float kFormatAgreementUnits = 8;
+
+// The relation `c.spec.relation` for the plugin outputs `floors` (their `output`), rendered
+// from the case's scene with `params`; heat maps per floor into `heat`.
+Result<CheckResult> check_relation(const CaseContext& c, Session& s, CaseWriter& w,
+                                   const nlohmann::json& params, const std::string& name,
+                                   const std::vector<FloorImages>& floors,
+                                   std::map<int64_t, ImageRGBA>& heat);
+
+// One unit in the last place of a half float at |v| (2^-24 below the smallest normal half).
+float half_ulp(float v);
+
+}  // namespace acetate::harness
