@@ -14,6 +14,8 @@
 #include "core/input_file.hpp"
 #include "core/strict_json.hpp"
 #include "validate.hpp"
+#include "vulkan/shader_compiler.hpp"
+#include "vulkan/vulkan_context.hpp"
 
 namespace acetate::harness {
 namespace {
@@ -93,6 +95,13 @@ std::string shell_word(const std::string& text) {
 bool fork_server_wanted() {
     const char* value = std::getenv("ACETATE_FORK_SERVER");
     return !(value && std::strcmp(value, "0") == 0);
+}
+
+bool prepare_case_children(std::string& error) {
+    warm_shader_compiler();
+    auto preloaded = VulkanContext::preload_libraries(ContextOptions::from_environment());
+    if (!preloaded) error = preloaded.error().message;
+    return bool(preloaded);
 }
 
 std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpec>& cases) {

@@ -527,8 +527,9 @@ int run_harness(int argc, char** argv) {
 
 int main(int argc, char** argv) {
     // Started by a run as its fork server (core/fork_server.hpp): each case's child is forked
-    // from this untouched process and runs as `acetate-harness run-case ...` would.
+    // from this process, prepared once (prepare_case_children) and otherwise untouched, and
+    // runs as `acetate-harness run-case ...` would.
     if (argc == 2 && std::strcmp(argv[1], harness::kForkServerCommand) == 0)
-        return serve_forks(run_harness);
+        return serve_forks(run_harness, harness::prepare_case_children);
     return run_harness(argc, argv);
 }

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 
 extern char** environ;
@@ -137,10 +138,36 @@ int32_t fork_orphan(const std::vector<std::string>& request,
     return answer;
 }
 
+// The threads of this process now.
+size_t thread_count() {
+    std::error_code ec;
+    size_t count = 0;
+    for (auto it = std::filesystem::directory_iterator("/proc/self/task", ec);
+         !ec && it != std::filesystem::directory_iterator(); it.increment(ec))
+        ++count;
+    return count;
+}
+
 }  // namespace
 
-int serve_forks(const std::function<int(int argc, char** argv)>& run) {
+int serve_forks(const std::function<int(int argc, char** argv)>& run,
+                const std::function<bool(std::string& error)>& prepare) {
     ::signal(SIGPIPE, SIG_IGN);
+    if (prepare) {
+        const size_t threads = thread_count();
+        std::string error;
+        const bool prepared = prepare(error);
+        if (!prepared && error.empty()) error = "it failed";
+        if (prepared && thread_count() > threads)
+            error = "it started " + std::to_string(thread_count() - threads) + " thread(s)";
+        if (!error.empty()) {
+            std::fprintf(stderr,
+                         "fork server: cannot prepare the children (%s); they are "
+                         "started one by one instead\n",
+                         error.c_str());
+            return 1;
+        }
+    }
     std::vector<std::string> request;
     while (read_request(STDIN_FILENO, request)) {
         const int32_t answer = fork_orphan(request, run);

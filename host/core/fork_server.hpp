@@ -30,7 +30,14 @@ namespace acetate {
 // The server's side: reads requests on standard input until end of file; for each, forks a
 // child that runs `run(argc, argv)` with the request's arguments and exits with its result.
 // The program calls this from main() when started as its server.
-int serve_forks(const std::function<int(int argc, char** argv)>& run);
+//
+// `prepare`, when given, runs once before the first request: work every child would do the
+// same way at its start (loading libraries, warming caches), done once so each child begins
+// after it. It must leave no thread behind, as a child would not have it: when it fails, or
+// the server has more threads after it than before, the server says why on standard error
+// and ends, and the caller spawns its children itself.
+int serve_forks(const std::function<int(int argc, char** argv)>& run,
+                const std::function<bool(std::string& error)>& prepare = {});
 
 class ForkServer {
   public:

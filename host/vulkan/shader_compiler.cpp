@@ -55,4 +55,12 @@ Result<std::vector<uint32_t>> compile_glsl(std::string_view name, ShaderStage st
     return spirv;
 }
 
+void warm_shader_compiler() {
+    (void)compile_glsl("warm-up.vert", ShaderStage::Vertex,
+                       "#version 450\nvoid main() { gl_Position = vec4(0.0); }\n");
+    (void)compile_glsl("warm-up.frag", ShaderStage::Fragment,
+                       "#version 450\nlayout(location = 0) out vec4 colour;\n"
+                       "void main() { colour = vec4(0.0); }\n");
+}
+
 }  // namespace acetate

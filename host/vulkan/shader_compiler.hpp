@@ -19,6 +19,11 @@ enum class ShaderStage { Vertex, Fragment };
 Result<std::vector<uint32_t>> compile_glsl(std::string_view name, ShaderStage stage,
                                            std::string_view source);
 
+// Compiles a trivial vertex and fragment shader, so that glslang's process state and its
+// built-in symbol tables for both stages (built on a stage's first compile and kept; most of
+// what compiling a short shader costs) exist before a process is forked (core/fork_server.hpp).
+void warm_shader_compiler();
+
 // The host's own shaders, embedded at build time from host/shaders/ (empty if unknown).
 std::string_view embedded_shader(std::string_view name);
 

@@ -1,6 +1,8 @@
 #include "vulkan/vulkan_context.hpp"
 
+#include <dlfcn.h>
 #include <fmt/format.h>
+#include <link.h>
 
 #include <algorithm>
 #include <atomic>
@@ -9,6 +11,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <set>
+#include <string>
 
 #include "vulkan/vk_check.hpp"
 
@@ -49,6 +53,19 @@ int device_type_rank(VkPhysicalDeviceType type) {
 
 std::atomic<uint64_t> g_validation_messages{0};
 
+// The file names of every object loaded in the process now.
+std::set<std::string> loaded_objects() {
+    std::set<std::string> names;
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, size_t, void* out) {
+            if (info->dlpi_name && info->dlpi_name[0])
+                static_cast<std::set<std::string>*>(out)->insert(info->dlpi_name);
+            return 0;
+        },
+        &names);
+    return names;
+}
+
 }  // namespace
 
 uint64_t VulkanContext::process_validation_message_count() {
@@ -69,6 +86,22 @@ Result<std::unique_ptr<VulkanContext>> VulkanContext::create(const ContextOption
     ACETATE_TRY(context->pick_device(options.device_selector));
     ACETATE_TRY(context->create_device());
     return context;
+}
+
+Result<void> VulkanContext::preload_libraries(const ContextOptions& options) {
+    const std::set<std::string> before = loaded_objects();
+    std::unique_ptr<VulkanContext> probe(new VulkanContext());
+    ACETATE_TRY(probe->create_instance(options));
+    // One more reference to each object the instance loaded, never released: destroying the
+    // instance unloads them otherwise.
+    for (const std::string& name : loaded_objects())
+        if (!before.count(name)) (void)dlopen(name.c_str(), RTLD_LAZY | RTLD_NOLOAD);
+    probe.reset();
+    if (const uint64_t messages = process_validation_message_count())
+        return make_error(ErrorCode::VulkanInit,
+                          fmt::format("{} validation message{} while preloading Vulkan", messages,
+                                      messages == 1 ? "" : "s"));
+    return {};
 }
 
 VulkanContext::~VulkanContext() {

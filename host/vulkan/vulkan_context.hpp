@@ -46,6 +46,12 @@ class VulkanContext {
     // VulkanInit when a required feature (Vulkan 1.3 dynamic rendering, synchronization2,
     // push descriptors, fragment stores) is missing.
     static Result<std::unique_ptr<VulkanContext>> create(const ContextOptions& options);
+    // Loads the libraries a context with these options uses (the Vulkan loader, every driver,
+    // the layers) and keeps them loaded for the life of the process, creating an instance and
+    // destroying it again but no device. A process forked afterwards (core/fork_server.hpp)
+    // starts with them loaded and relocated: on lavapipe, relocating LLVM and the validation
+    // layer against the 260 libraries OpenImageIO brings is most of a short case's start.
+    static Result<void> preload_libraries(const ContextOptions& options);
     ~VulkanContext();
     VulkanContext(const VulkanContext&) = delete;
     VulkanContext& operator=(const VulkanContext&) = delete;

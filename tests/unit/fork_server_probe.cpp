@@ -8,6 +8,10 @@
 //   spin S       computes for S seconds of CPU time, then returns 0
 //   fds          prints the child's open descriptors and what stdin is, returns 0
 //   mark FILE    writes this process's pid into FILE, returns 0
+//   prepared     prints "prepared" when the server's preparation ran before this child,
+//                "not prepared" when it did not (a spawned child), returns 0
+// The server's preparation is chosen by FORK_PROBE_PREPARE: "work" sets the mark `prepared`
+// reads, "thread" sets it and leaves a thread running, "fail" fails; unset, there is none.
 // It links the host library like acetate-harness, so the server holds the same libraries (and
 // the idle threads some of them start at load) that a child must survive without.
 
@@ -20,6 +24,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
 
@@ -27,6 +32,16 @@
 #include "scene/image_io.hpp"
 
 namespace {
+
+bool g_prepared = false;
+
+bool prepare(std::string& error) {
+    const std::string how = std::getenv("FORK_PROBE_PREPARE");
+    g_prepared = true;
+    if (how == "thread") std::thread([] { ::pause(); }).detach();
+    if (how == "fail") error = "the probe was told to fail";
+    return how != "fail";
+}
 
 int run_command(int argc, char** argv) {
     if (argc < 2) return 2;
@@ -68,6 +83,10 @@ int run_command(int argc, char** argv) {
         std::ofstream(arg) << ::getpid() << "\n";
         return 0;
     }
+    if (what == "prepared") {
+        std::printf("%s\n", g_prepared ? "prepared" : "not prepared");
+        return 0;
+    }
     return 2;
 }
 
@@ -77,6 +96,8 @@ int main(int argc, char** argv) {
     // Touch the host library, as acetate-harness does, so it is loaded with all it brings.
     (void)acetate::srgb_to_linear(0.5f);
     if (argc == 2 && std::strcmp(argv[1], "fork-server") == 0)
-        return acetate::serve_forks(run_command);
+        return acetate::serve_forks(run_command, std::getenv("FORK_PROBE_PREPARE")
+                                                     ? prepare
+                                                     : std::function<bool(std::string&)>());
     return run_command(argc, argv);
 }

@@ -53,9 +53,12 @@ std::vector<Ran> run_probe(const fs::path& dir,
     return ran;
 }
 
-std::unique_ptr<ForkServer> start_server() {
+// A server; with `prepare`, its preparation is that one (FORK_PROBE_PREPARE in the probe).
+std::unique_ptr<ForkServer> start_server(const char* prepare = nullptr) {
     std::string error;
+    if (prepare) ::setenv("FORK_PROBE_PREPARE", prepare, 1);
     auto server = ForkServer::start({ACETATE_FORK_SERVER_PROBE, "fork-server"}, error);
+    ::unsetenv("FORK_PROBE_PREPARE");
     EXPECT_TRUE(server) << error;
     return server;
 }
@@ -163,6 +166,29 @@ TEST(ForkServer, AServerThatIsGoneFallsBackToSpawning) {
                                std::chrono::seconds(20));
     EXPECT_EQ(ran[0].outcome.exit_code, 0) << ran[0].outcome.message;
     EXPECT_EQ(ran[0].log, "still\n");
+}
+
+TEST(ForkServer, ChildrenStartAfterTheServersPreparation) {
+    auto server = start_server("work");
+    ASSERT_TRUE(server);
+    const auto ran = run_probe(test::scratch_dir(), {{"prepared"}, {"prepared"}}, server.get(),
+                               std::chrono::seconds(20));
+    EXPECT_EQ(ran[0].log, "prepared\n");
+    EXPECT_EQ(ran[1].log, "prepared\n");
+}
+
+TEST(ForkServer, APreparationThatFailsOrLeavesAThreadIsNotUsed) {
+    // A thread the preparation started would be missing in every child: the server refuses to
+    // serve, and the children are spawned, unprepared but whole.
+    for (const char* how : {"thread", "fail"}) {
+        auto server = start_server(how);
+        ASSERT_TRUE(server);
+        const auto ran = run_probe(test::scratch_dir(), {{"prepared"}, {"print", "still"}},
+                                   server.get(), std::chrono::seconds(20));
+        EXPECT_EQ(ran[0].log, "not prepared\n") << how;
+        EXPECT_EQ(ran[1].outcome.exit_code, 0) << how << ": " << ran[1].outcome.message;
+        EXPECT_EQ(ran[1].log, "still\n") << how;
+    }
 }
 
 }  // namespace
