@@ -1,10 +1,12 @@
-// The planner: which cases a run has (docs/harness.md, "The cases"). Every dimension of the
-// input model (input_model.hpp) is varied on its own at least once, at every strictness; the
-// combinations, sweep points, frames and switches grow with strictness.
+// The contract kind's plan: which contract cases a run has (docs/harness.md, "The cases").
+// Every dimension of the input model (input_model.hpp) is varied on its own at least once, at
+// every strictness; the contexts and relations; the combinations. The sweep points, frames and
+// combined cases grow with strictness.
 #include <fmt/format.h>
 
 #include <algorithm>
 
+#include "case_kinds.hpp"
 #include "case_spec.hpp"
 #include "combinations.hpp"
 #include "input_model.hpp"
@@ -22,40 +24,13 @@ json all_params_at(const PluginInfo& plugin, bool at_max) {
     return params;
 }
 
-class Planner {
-  public:
-    Planner(const PluginInfo& plugin, uint64_t run_seed) : plugin_(plugin), run_seed_(run_seed) {}
+}  // namespace
 
-    CaseSpec contract(std::string id, std::string description, uint32_t w = 128, uint32_t h = 96,
-                      Pattern pattern = Pattern::Standard, uint32_t floors = 1) {
-        CaseSpec s;
-        s.id = std::move(id);
-        s.description = std::move(description);
-        s.width = w;
-        s.height = h;
-        s.pattern = pattern;
-        s.floors = floors;
-        return s;
-    }
-    // Seeds the case from its id (unless it was seeded already), poisons it, and tabulates
-    // its inputs for the report.
-    void add(CaseSpec s, bool seeded = false) {
-        if (!seeded) s.seed = case_seed(run_seed_, s.id);
-        // NaN in most processes (reading it fails `finite`); a large finite colour in every
-        // third, so a plugin that launders NaN still shows a difference somewhere.
-        if (s.poison == Poison::NaN && cases.size() % 3 == 2) s.poison = Poison::Large;
-        s.inputs = describe_inputs(s, plugin_);
-        cases.push_back(std::move(s));
-    }
-    std::vector<CaseSpec> cases;
-
-  private:
-    const PluginInfo& plugin_;
-    uint64_t run_seed_;
-};
-
-void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Planner& p) {
-    const bool floor_effect = !plugin.is_global();
+void plan_contract(const PlanContext& context, Planner& p) {
+    const PluginInfo& plugin = context.plugin;
+    const int strictness = context.strictness;
+    const uint64_t run_seed = context.run_seed;
+    const bool floor_effect = context.floor_effect();
     // ---- canvas ----
     p.add(p.contract("contract/standard", "one floor: opaque, partial and transparent areas", 256,
                      160));
@@ -265,50 +240,7 @@ void plan_alpha(const PluginInfo& plugin, int strictness, uint64_t run_seed, Pla
             p.add(s);
         }
     }
-
-    // ---- determinism, isolation, undefined results ----
-    // Two fresh processes, and a third that renders other scenes and frames first: all three
-    // must give the same bytes. Their poisons differ, so a read of unwritten memory differs.
-    const Poison poisons[] = {Poison::Large, Poison::Plain, Poison::NaN};
-    for (int run = 1; run <= 3; ++run) {
-        CaseSpec s = p.contract(run < 3 ? fmt::format("determinism/run-{}", run)
-                                        : std::string("determinism/after-history"),
-                                run < 3 ? "the same case in two processes, two frames each"
-                                        : "the same case after two other loads and six frames",
-                                192, 128, Pattern::Standard, 2);
-        s.kind = CaseKind::Determinism;
-        s.poison = poisons[run - 1];
-        if (run == 3) {
-            s.prior_loads = 2;
-            s.frames = 6;
-        }
-        s.seed = case_seed(run_seed, "determinism");  // every run: the same inputs
-        p.add(s, true);
-    }
-    CaseSpec state = p.contract("isolation/state",
-                                "floors 0, 1, 0; each floor alone; a second load; then many "
-                                "switches and loads for memory growth",
-                                160, 96, Pattern::Standard, 2);
-    state.kind = CaseKind::StateIsolation;
-    state.switches = uint32_t(20 * strictness);
-    p.add(state);
-    if (floor_effect) {
-        CaseSpec floor = p.contract("isolation/floors",
-                                    "the composite with and without the effect on floor 1 of 3",
-                                    192, 128, Pattern::Standard, 3);
-        floor.kind = CaseKind::FloorIsolation;
-        p.add(floor);
-    }
-    if (!plugin.params.empty()) {
-        CaseSpec s = p.contract("params/disconnected",
-                                "each parameter at its minimum and maximum must change the "
-                                "output (lights, masks and three times given)");
-        s.kind = CaseKind::Disconnected;
-        p.add(s);
-    }
 }
-
-}  // namespace
 
 std::string combinations_summary(const PluginInfo& plugin, int strictness, uint64_t run_seed) {
     strictness = std::clamp(strictness, 1, 10);
@@ -319,36 +251,6 @@ std::string combinations_summary(const PluginInfo& plugin, int strictness, uint6
                fmt::format(" (strength 1; pairwise from strictness {})", kPairwiseStrictness);
     const std::string pairwise = pairwise_combinations(plugin, run_seed).summary;
     return strictness >= 6 ? pairwise + ", and " + hypercube : pairwise;
-}
-
-std::vector<CaseSpec> plan_cases(const PluginInfo& plugin, int strictness, uint64_t run_seed,
-                                 bool alpha_stage, bool integration_stage,
-                                 const std::vector<CompanionPlugin>& companions) {
-    strictness = std::clamp(strictness, 1, 10);
-    Planner p(plugin, run_seed);
-    if (alpha_stage) {
-        plan_alpha(plugin, strictness, run_seed, p);
-        // The reference cases are the same at every strictness and seed (references.hpp).
-        for (CaseSpec& golden : golden_cases(plugin)) p.cases.push_back(std::move(golden));
-    }
-    if (integration_stage) {
-        CaseSpec s = p.contract("integration/stack",
-                                "four floors with the other integrated plugins, against the "
-                                "composite rebuilt from each floor rendered alone",
-                                256, 160, Pattern::Standard, 4);
-        s.kind = CaseKind::Integration;
-        s.companions = companions;
-        p.add(s);
-        if (strictness >= 5) {
-            s = p.contract("integration/stack-hdr",
-                           "the same stack on HDR inputs near the half-float maximum", 128, 96,
-                           Pattern::Hdr, 4);
-            s.kind = CaseKind::Integration;
-            s.companions = companions;
-            p.add(s);
-        }
-    }
-    return p.cases;
 }
 
 }  // namespace acetate::harness

@@ -24,30 +24,7 @@ Result<CaseResult> run_case(const CaseContext& c) {
     auto session = open_session(c);
     if (!session) return session.error();
     CaseWriter writer(c);
-    Result<void> ran;
-    switch (c.spec.kind) {
-        case CaseKind::Contract:
-            ran = run_contract(c, *session, writer);
-            break;
-        case CaseKind::Determinism:
-            ran = run_determinism(c, *session, writer);
-            break;
-        case CaseKind::StateIsolation:
-            ran = run_state_isolation(c, *session, writer);
-            break;
-        case CaseKind::FloorIsolation:
-            ran = run_floor_isolation(c, *session, writer);
-            break;
-        case CaseKind::Disconnected:
-            ran = run_disconnected(c, *session, writer);
-            break;
-        case CaseKind::Integration:
-            ran = run_integration(c, *session, writer);
-            break;
-        case CaseKind::Golden:
-            ran = run_golden(c, *session, writer);
-            break;
-    }
+    const Result<void> ran = case_kind_info(c.spec.kind).run(c, *session, writer);
     if (!ran) return ran.error();
     // Close Vulkan first: messages at teardown (objects left alive) count too.
     const bool validation_layer_on = session->context->validation_enabled();

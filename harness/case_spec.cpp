@@ -7,6 +7,7 @@
 #include <iterator>
 #include <random>
 
+#include "case_kinds.hpp"
 #include "core/json_fields.hpp"
 
 namespace acetate::harness {
@@ -14,9 +15,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr const char* kKindNames[] = {"contract",        "determinism",  "state-isolation",
-                                      "floor-isolation", "disconnected", "integration",
-                                      "golden"};
 constexpr const char* kPatternNames[] = {"standard", "alpha-ramp", "hdr",
                                          "empty",    "opaque",     "subnormal"};
 constexpr const char* kLightNames[] = {"three",       "none",        "one",          "many",
@@ -42,9 +40,6 @@ std::optional<Enum> parse_enum(const char* const (&names)[N], const std::string&
 
 }  // namespace
 
-const char* to_string(CaseKind kind) {
-    return kKindNames[int(kind)];
-}
 const char* to_string(Pattern pattern) {
     return kPatternNames[int(pattern)];
 }
@@ -201,6 +196,18 @@ Enum enum_field(const json& j, const std::string& path, std::string_view key,
         fmt::format("unknown value {} (known: {})", json_fields::json_quoted(name), known));
 }
 
+// The kind a case names, one of the registered ones (case_kinds.hpp).
+CaseKind case_kind_field(const json& j, const std::string& path) {
+    const std::string name = json_fields::text(j, path, "kind");
+    if (const CaseKindInfo* kind = find_case_kind(name)) return kind->kind;
+    std::string known;
+    for (const CaseKindInfo& k : registered_case_kinds())
+        known += (known.empty() ? "" : ", ") + std::string(k.name);
+    json_fields::fail(
+        json_fields::field(path, "kind"),
+        fmt::format("unknown value {} (known: {})", json_fields::json_quoted(name), known));
+}
+
 }  // namespace
 
 CaseSpec read_case_spec(const json& j, const std::string& path) {
@@ -214,7 +221,7 @@ CaseSpec read_case_spec(const json& j, const std::string& path) {
     CaseSpec s;
     s.id = text(j, path, "id");
     s.description = text(j, path, "description");
-    s.kind = enum_field<CaseKind>(j, path, "kind", kKindNames);
+    s.kind = case_kind_field(j, path);
     s.pattern = enum_field<Pattern>(j, path, "pattern", kPatternNames);
     s.lights = enum_field<LightSet>(j, path, "lights", kLightNames);
     s.masks = enum_field<MaskFill>(j, path, "masks", kMaskNames);

@@ -53,7 +53,8 @@ Result<PluginInfo> plugin_info_from_json(const nlohmann::json& json, std::string
 // `path`; a bad field throws json_fields::JsonFieldError, for that reader's read_json to catch.
 PluginInfo read_plugin_info(const nlohmann::json& json, const std::string& path);
 
-// What a case does with the plugin (case_runner.cpp runs each kind).
+// What a case does with the plugin: each kind is registered once, with its name, plan and run
+// functions, in case_kinds.cpp.
 enum class CaseKind {
     Contract,        // render, then check each output against its input (contract_checks.hpp)
     Determinism,     // two frames in one process must match; the digest is compared across two
@@ -170,9 +171,10 @@ Result<CaseSpec> case_spec_from_json(const nlohmann::json& json, std::string_vie
 // The same inside another reader (see read_plugin_info).
 CaseSpec read_case_spec(const nlohmann::json& json, const std::string& path);
 
-// The cases of one run (case_plan.cpp): each dimension of the input model varied on its own,
-// then combinations: pairwise, or from a Latin hypercube at low strictness. Strictness 1..10 sets
-// how many combinations, sweep points, frames and floor switches, and how large the large size;
+// The cases of one run (case_kinds.cpp asks each kind; case_plan.cpp plans the contract cases):
+// each dimension of the input model varied on its own, then combinations: pairwise, or from a
+// Latin hypercube at low strictness. Strictness 1..10 sets how many combinations, sweep
+// points, frames and floor switches, and how large the large size;
 // `run_seed` makes every case's seed (and so its inputs and drawn values) reproducible.
 // `integration` adds the INTEGRATED stage's cases.
 std::vector<CaseSpec> plan_cases(const PluginInfo& plugin, int strictness, uint64_t run_seed,

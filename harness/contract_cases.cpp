@@ -309,4 +309,13 @@ Result<void> run_disconnected(const CaseContext& c, Session& s, CaseWriter& w) {
     return {};
 }
 
+void plan_disconnected(const PlanContext& context, Planner& p) {
+    if (context.plugin.params.empty()) return;
+    CaseSpec s = p.contract("params/disconnected",
+                            "each parameter at its minimum and maximum must change the "
+                            "output (lights, masks and three times given)");
+    s.kind = CaseKind::Disconnected;
+    p.add(s);
+}
+
 }  // namespace acetate::harness

@@ -128,4 +128,9 @@ Result<void> run_golden(const CaseContext& c, Session& s, CaseWriter& w) {
     return {};
 }
 
+void plan_golden(const PlanContext& context, Planner& p) {
+    // The reference cases are the same at every strictness and seed (references.hpp).
+    for (CaseSpec& golden : golden_cases(context.plugin)) p.add_as_is(std::move(golden));
+}
+
 }  // namespace acetate::harness

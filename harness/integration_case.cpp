@@ -183,4 +183,22 @@ Result<void> run_integration(const CaseContext& c, Session& s, CaseWriter& w) {
     return {};
 }
 
+void plan_integration(const PlanContext& context, Planner& p) {
+    CaseSpec s = p.contract("integration/stack",
+                            "four floors with the other integrated plugins, against the "
+                            "composite rebuilt from each floor rendered alone",
+                            256, 160, Pattern::Standard, 4);
+    s.kind = CaseKind::Integration;
+    s.companions = context.companions;
+    p.add(s);
+    if (context.strictness >= 5) {
+        s = p.contract("integration/stack-hdr",
+                       "the same stack on HDR inputs near the half-float maximum", 128, 96,
+                       Pattern::Hdr, 4);
+        s.kind = CaseKind::Integration;
+        s.companions = context.companions;
+        p.add(s);
+    }
+}
+
 }  // namespace acetate::harness

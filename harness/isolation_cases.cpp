@@ -231,4 +231,44 @@ Result<void> run_floor_isolation(const CaseContext& c, Session& s, CaseWriter& w
     return {};
 }
 
+void plan_determinism(const PlanContext& context, Planner& p) {
+    // Two fresh processes, and a third that renders other scenes and frames first: all three
+    // must give the same bytes. Their poisons differ, so a read of unwritten memory differs.
+    const Poison poisons[] = {Poison::Large, Poison::Plain, Poison::NaN};
+    for (int run = 1; run <= 3; ++run) {
+        CaseSpec s = p.contract(run < 3 ? fmt::format("determinism/run-{}", run)
+                                        : std::string("determinism/after-history"),
+                                run < 3 ? "the same case in two processes, two frames each"
+                                        : "the same case after two other loads and six frames",
+                                192, 128, Pattern::Standard, 2);
+        s.kind = CaseKind::Determinism;
+        s.poison = poisons[run - 1];
+        if (run == 3) {
+            s.prior_loads = 2;
+            s.frames = 6;
+        }
+        s.seed = case_seed(context.run_seed, "determinism");  // every run: the same inputs
+        p.add(s, true);
+    }
+}
+
+void plan_state_isolation(const PlanContext& context, Planner& p) {
+    CaseSpec state = p.contract("isolation/state",
+                                "floors 0, 1, 0; each floor alone; a second load; then many "
+                                "switches and loads for memory growth",
+                                160, 96, Pattern::Standard, 2);
+    state.kind = CaseKind::StateIsolation;
+    state.switches = uint32_t(20 * context.strictness);
+    p.add(state);
+}
+
+void plan_floor_isolation(const PlanContext& context, Planner& p) {
+    if (!context.floor_effect()) return;
+    CaseSpec floor =
+        p.contract("isolation/floors", "the composite with and without the effect on floor 1 of 3",
+                   192, 128, Pattern::Standard, 3);
+    floor.kind = CaseKind::FloorIsolation;
+    p.add(floor);
+}
+
 }  // namespace acetate::harness
