@@ -49,6 +49,7 @@ Result<std::unique_ptr<Scene::Loaded>> load(const std::shared_ptr<Host::State>& 
     options.format = scene_options.precision == Precision::Float32 ? VK_FORMAT_R32G32B32A32_SFLOAT
                                                                    : VK_FORMAT_R16G16B16A16_SFLOAT;
     options.leave_out_refused = scene_options.leave_out_refused_effects;
+    options.gpu_timings = scene_options.gpu_timings;
     auto compositor = Compositor::load(*host->renderer, loaded->desc, options);
     if (!compositor) return error_of(compositor.error());
     loaded->compositor = std::move(compositor.value());

@@ -178,7 +178,14 @@ Result<FrameStatistics> Scene::render() {
     out.pipelines_created = stats->pipelines_created;
     for (const FloorFrameReport& floor : stats->floors) out.floors.push_back(step_of(floor));
     if (stats->global) out.global_effects = step_of(*stats->global);
+    for (const PassTiming& pass : stats->gpu_passes)
+        out.gpu_passes.push_back({pass.name, pass.milliseconds});
     return out;
+}
+
+std::string Scene::gpu_timings_warning() const {
+    const std::lock_guard lock(loaded_->host->calls);
+    return loaded_->compositor->gpu_timings_warning();
 }
 
 Result<Image> Scene::read_frame() {

@@ -92,6 +92,11 @@ struct SceneOptions {
     // list it, and Scene::left_out_effects() says which and why (each also goes to
     // on_warning). Any other failure still fails the load.
     bool leave_out_refused_effects = false;
+    // Time every step of each frame on the GPU (Vulkan timestamp queries around each floor's
+    // tiles, each effect pass, the composite and the output): FrameStatistics::gpu_passes.
+    // Costs two timestamps a step. A device whose queue cannot time renders untimed, and
+    // Scene::gpu_timings_warning() says why.
+    bool gpu_timings = false;
 };
 
 // A scene file read and checked without a device (Host::inspect_scene_file): enough for a
@@ -162,6 +167,12 @@ struct ParamChange {
     double milliseconds = 0;
 };
 
+// The GPU time of one step of a frame (SceneOptions::gpu_timings).
+struct PassTime {
+    std::string name;  // "floor 0 tiles", an effect pass ("floor0.acetate.water.shade"), "output"
+    double milliseconds = 0;
+};
+
 struct FrameStatistics {
     uint32_t active_floor = 0;
     double time = 0;             // seconds, as the effects saw it
@@ -173,6 +184,7 @@ struct FrameStatistics {
     uint64_t images_loaded = 0, targets_allocated = 0, shaders_compiled = 0, pipelines_created = 0;
     std::vector<StepStatistics> floors;            // floors 0..active_floor, bottom to top
     std::optional<StepStatistics> global_effects;  // when the scene has any
+    std::vector<PassTime> gpu_passes;  // in the order recorded; with SceneOptions::gpu_timings
 };
 
 // An effect a scene loaded without (SceneOptions::leave_out_refused_effects).
@@ -280,6 +292,9 @@ class Scene {
     // The effects left out because the policy refused their plugin; empty unless
     // SceneOptions::leave_out_refused_effects was set.
     std::vector<LeftOutEffect> left_out_effects() const;
+    // Why frames are not timed although SceneOptions::gpu_timings asked for it ("" when they
+    // are, or when it was not asked).
+    std::string gpu_timings_warning() const;
     // What the scene holds on the device: its render targets, and every image (targets, tile
     // textures and masks).
     std::vector<ImageInfo> render_targets() const;
