@@ -27,6 +27,16 @@
 #           the current binary directory.
 # INSTALL   install <name>.so to ${CMAKE_INSTALL_LIBDIR}/acetate/plugins.
 #
+# The shaders are checked at build time: once <name>.so is linked, `acetate check-shaders` loads
+# it, calls its build() with the defaults and with each preset (on a floor with lights, a sun
+# and every mask kind it reads, 1 over the middle of the canvas), and compiles every GLSL pass with the preamble the host puts
+# before it at load, plain and with the harness's checked built-ins. A GLSL error fails the
+# build with the shader file and line (`tint.frag:12: error: ...`). The check uses the
+# `acetate` program: in the Acetate tree its target (ACETATE_SHADER_CHECKER), installed the
+# package's ACETATE_EXECUTABLE; without either it is skipped with a message. Set
+# ACETATE_CHECK_SHADERS to OFF before acetate_add_effect to build without it (plugins broken on
+# purpose, sanitizer builds).
+#
 # ACETATE_SOURCE_DIGEST (the descriptor's source_digest, to which maintainers' sign-offs bind)
 # is defined as the lowercase hex SHA-256 of the concatenation of the lowercase hex SHA-256 of
 # every file in SOURCES, in the order given, then every file in SHADERS, in the order given
@@ -156,6 +166,35 @@ function(acetate_add_effect name)
       VERBATIM)
     target_sources(${name} PRIVATE "${header}")
     target_include_directories(${name} PRIVATE "${gen_dir}")
+  endif()
+
+  # The shaders checked at build time, into a stamp file: a failed check leaves none, so the
+  # next build checks again.
+  if(NOT DEFINED ACETATE_CHECK_SHADERS OR ACETATE_CHECK_SHADERS)
+    set(checker "")
+    if(DEFINED ACETATE_SHADER_CHECKER)
+      set(checker "${ACETATE_SHADER_CHECKER}")
+    elseif(DEFINED ACETATE_EXECUTABLE)
+      set(checker "${ACETATE_EXECUTABLE}")
+    endif()
+    if(checker)
+      set(stamp "${CMAKE_CURRENT_BINARY_DIR}/${name}_acetate/shaders.checked")
+      set(shader_flags "")
+      foreach(shader IN LISTS shaders)
+        list(APPEND shader_flags --shader "${shader}")
+      endforeach()
+      add_custom_command(
+        OUTPUT "${stamp}"
+        COMMAND "${checker}" check-shaders "$<TARGET_FILE:${name}>" ${shader_flags}
+        COMMAND "${CMAKE_COMMAND}" -E touch "${stamp}"
+        DEPENDS ${name} ${shaders}
+        COMMENT "Checking the shaders of ${name}"
+        VERBATIM)
+      add_custom_target(${name}_shaders_checked ALL DEPENDS "${stamp}")
+    else()
+      message(STATUS "acetate_add_effect(${name}): shaders not checked at build time: no "
+                     "installed `acetate` (ACETATE_EXECUTABLE)")
+    endif()
   endif()
 
   if(arg_INSTALL)

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "../flag_values.hpp"
+#include "check_shaders_command.hpp"
 #include "core/number_text.hpp"
 #include "render_command.hpp"
 #include "time_list.hpp"
@@ -69,6 +70,16 @@ int main(int argc, char** argv) {
                   "Load plugins the registry does not have VALIDATED for their exact binary, "
                   "with a warning");
 
+    acetate::CheckShadersCommand check;
+    CLI::App* check_cmd = app.add_subcommand(
+        "check-shaders",
+        "Compile every GLSL pass a plugin declares, with the host's preamble (acetate_add_effect "
+        "runs it at build time)");
+    check_cmd->add_option("plugin", check.plugin, "The plugin library (.so)")->required();
+    check_cmd->add_option("--shader", check.shaders,
+                          "A GLSL file the passes' text comes from (repeatable): errors then "
+                          "name it and its line");
+
     try {
         app.parse(argc, argv);
         if (cmd->count("--times") > 0) {
@@ -115,6 +126,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
+        if (check_cmd->parsed()) return acetate::run_check_shaders(check);
         return acetate::run_render(render);
     } catch (const std::exception& e) {
         // Out of memory and the like: still one line and a non-zero exit, never an abort.

@@ -16,7 +16,7 @@
 #    harbour floor by floor (--allow-unvalidated), no frame allocating or compiling.
 # 2. Copies examples/out-of-tree-plugin to <WORK_DIR>/src, configures it in <WORK_DIR>/build
 #    with CMAKE_PREFIX_PATH=<WORK_DIR>/prefix (and checks find_package found that prefix), and
-#    builds it.
+#    builds it; the build checks each plugin's shaders with the installed `acetate`.
 # 3. Checks each plugin the example builds (tint.so, drop_shadow.so, colour_grade.so): its
 #    dynamic symbol table defines acetate_effect_entry_v1 and nothing else but the linker's
 #    standard symbols; it needs no Acetate library; its generated header embeds each shader;
@@ -26,6 +26,8 @@
 #    differs from the scene without effects). Skipped with -DRENDER=OFF.
 # 5. Edits the copy of tint.frag, rebuilds, and checks the embedded-shader header and the
 #    digest follow.
+# 6. Puts a GLSL error on tint.frag's last line: the build fails naming tint.frag and that
+#    line, and fails again on the next build (the check is not skipped once it has failed).
 # Any failure ends the script with message(FATAL_ERROR), so ctest reports the test failed.
 cmake_minimum_required(VERSION 3.20)
 
@@ -235,6 +237,13 @@ if(NOT acetate_dir STREQUAL want_dir)
                       "not the installed package ${want_dir}")
 endif()
 run_step("build the out-of-tree plugin" "${CMAKE_COMMAND}" --build "${example_build}")
+# The installed `acetate check-shaders` compiled every pass of each plugin during that build.
+foreach(name tint drop_shadow colour_grade)
+  if(NOT step_output MATCHES "acetate check-shaders: com\\.example\\.${name}: [0-9]+ pass sources compiled")
+    message(FATAL_ERROR "sdk_install_test: the build did not check ${name}'s shaders:\n${step_output}")
+  endif()
+endforeach()
+message(STATUS "ok: the build checked every plugin's shaders with the installed acetate")
 
 # ---- 3. Check each plugin binary ----
 # check_plugin(<name> SOURCES <files>... SHADERS <files>...): <name>.so (not lib<name>.so)
@@ -384,5 +393,25 @@ if(new_digest STREQUAL digest)
 endif()
 require_digest("${plugin}" "${new_digest}")
 message(STATUS "ok: editing tint.frag regenerated tint_shaders.hpp and the digest")
+
+# ---- 6. A GLSL error fails the build, naming the shader file and line, until it is fixed ----
+file(APPEND "${example_src}/tint.frag" "float broken() { return undeclared_in_tint; }\n")
+file(READ "${example_src}/tint.frag" tint_text)
+string(REGEX MATCHALL "\n" newlines "${tint_text}")
+list(LENGTH newlines broken_line)  # the appended line is the last; the file ends with \n
+foreach(attempt first again)
+  execute_process(COMMAND "${CMAKE_COMMAND}" --build "${example_build}"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "sdk_install_test: the build passed with a GLSL error in tint.frag "
+                        "(${attempt} build):\n${out}")
+  endif()
+  string(REGEX REPLACE "([][+.*()^$?])" "\\\\\\1" quoted "${example_src}/tint.frag")
+  if(NOT out MATCHES "${quoted}:${broken_line}: error: 'undeclared_in_tint' : undeclared identifier")
+    message(FATAL_ERROR "sdk_install_test: the failed build does not name tint.frag:${broken_line} "
+                        "(${attempt} build):\n${out}")
+  endif()
+endforeach()
+message(STATUS "ok: a GLSL error in tint.frag fails the build at tint.frag:${broken_line}, twice")
 
 message(STATUS "sdk_install_test: passed")
