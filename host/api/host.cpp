@@ -176,6 +176,49 @@ std::string Host::device_name() const {
     return state_->context->device_name();
 }
 
+namespace {
+
+bool scene_uses(const SceneDesc& scene, const std::string& id) {
+    const auto named = [&](const EffectRef& ref) { return ref.plugin == id; };
+    return std::any_of(scene.global_effects.begin(), scene.global_effects.end(), named) ||
+           std::any_of(scene.floors.begin(), scene.floors.end(), [&](const FloorDesc& floor) {
+               return std::any_of(floor.effects.begin(), floor.effects.end(), named);
+           });
+}
+
+}  // namespace
+
+std::vector<PluginReload> Host::reload_plugins() {
+    const std::lock_guard lock(state_->calls);
+    std::vector<PluginReload> reloads;
+    for (PluginReloadOutcome& outcome : state_->renderer->plugins().reload_changed()) {
+        PluginReload reload{outcome.id, outcome.file, outcome.changed, 0, ""};
+        if (outcome.refused) reload.refused = outcome.refused->message;
+        if (outcome.changed && !outcome.refused) {
+            for (Scene::Loaded* loaded : state_->scenes) {
+                // The scene as it renders now, live parameters included.
+                SceneDesc desc = loaded->compositor->scene();
+                if (!scene_uses(desc, outcome.id)) continue;
+                auto compositor = Compositor::load(*state_->renderer, desc, loaded->options);
+                if (!compositor) {
+                    reload.refused +=
+                        (reload.refused.empty() ? "" : "; ") + compositor.error().message;
+                    continue;
+                }
+                loaded->compositor = std::move(compositor.value());
+                loaded->desc = std::move(desc);
+                loaded->rendered = false;  // read_frame() wants a frame of the new code
+                ++reload.scenes_rebuilt;
+            }
+        }
+        if (!reload.refused.empty())
+            state_->warn(fmt::format("warning: {} ({}) not reloaded: {}", reload.plugin,
+                                     reload.file.string(), reload.refused));
+        reloads.push_back(std::move(reload));
+    }
+    return reloads;
+}
+
 Result<void> Host::save_pipeline_cache() {
     const std::lock_guard lock(state_->calls);
     if (auto saved = state_->renderer->save_pipeline_cache(); !saved)

@@ -6,6 +6,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "acetate/host/host.hpp"
 #include "core/result.hpp"
@@ -27,6 +28,9 @@ struct Host::State {
     // shared and unsynchronised, so calls from several threads run one after another (a load
     // on one thread waits for a frame on another, and the reverse) instead of racing.
     mutable std::mutex calls;
+    // The scenes loaded on this Host and not yet destroyed (under `calls`): reload_plugins()
+    // loads again those that use a changed plugin.
+    std::vector<Scene::Loaded*> scenes;
 };
 
 struct Scene::Loaded {

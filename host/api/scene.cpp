@@ -80,12 +80,16 @@ Result<ParamChange> Scene::set_preset(const EffectSlot& effect, const std::strin
     return change_effect(*loaded_, effect, [&](EffectRef& ref) { ref.preset = preset; });
 }
 
-Scene::Scene(std::unique_ptr<Loaded> loaded) : loaded_(std::move(loaded)) {}
+Scene::Scene(std::unique_ptr<Loaded> loaded) : loaded_(std::move(loaded)) {
+    const std::lock_guard lock(loaded_->host->calls);
+    loaded_->host->scenes.push_back(loaded_.get());
+}
 // The compositor goes first: it uses the renderer and device the Loaded keeps alive.
 Scene::~Scene() {
     if (!loaded_) return;
     // Released before loaded_ goes: it may hold the last reference to the lock's Host::State.
     const std::lock_guard lock(loaded_->host->calls);
+    std::erase(loaded_->host->scenes, loaded_.get());
     loaded_->compositor.reset();
 }
 

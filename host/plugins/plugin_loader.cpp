@@ -13,6 +13,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "core/sha256.hpp"
 #include "plugins/plugin_calls.hpp"
 #include "plugins/sealed_library.hpp"
 
@@ -145,6 +146,34 @@ Result<std::shared_ptr<LoadedPlugin>> PluginLoader::open_library(
     plugin->api = api;
     plugin->descriptor = std::move(descriptor.value());
     return plugin;
+}
+
+std::vector<PluginReloadOutcome> PluginLoader::reload_changed() {
+    std::vector<PluginReloadOutcome> outcomes;
+    for (auto& [id, plugin] : by_id_) {
+        PluginReloadOutcome outcome{id, plugin->file, false, plugin, std::nullopt};
+        auto sha = file_sha256(plugin->file);
+        if (sha && sha.value() == plugin->binary_sha256) {
+            outcomes.push_back(std::move(outcome));
+            continue;
+        }
+        outcome.changed = true;
+        auto reopened = sha ? admit_and_open(id, plugin->file)
+                            : Result<std::shared_ptr<LoadedPlugin>>(sha.error());
+        if (reopened && reopened.value()->descriptor.id != id)
+            reopened =
+                make_error(ErrorCode::InvalidInput,
+                           fmt::format("{}: declares id \"{}\", not \"{}\"", plugin->file.string(),
+                                       reopened.value()->descriptor.id, id));
+        if (reopened) {
+            plugin = reopened.value();
+            outcome.plugin = plugin;
+        } else {
+            outcome.refused = reopened.error();
+        }
+        outcomes.push_back(std::move(outcome));
+    }
+    return outcomes;
 }
 
 Result<std::shared_ptr<LoadedPlugin>> PluginLoader::load(const std::string& id) {

@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,17 @@ struct LoadedPlugin {
     std::shared_ptr<boost::dll::shared_library> library;
     const AcetateEffectApi* api = nullptr;
     EffectDescriptor descriptor;
+};
+
+// What PluginLoader::reload_changed() found for one plugin loaded by id.
+struct PluginReloadOutcome {
+    std::string id;
+    std::filesystem::path file;  // the file it was loaded from
+    bool changed = false;        // the file's bytes differ from those loaded (or it is gone)
+    // The plugin now served for `id`: the new one when the changed file was admitted and
+    // opened, else the old one.
+    std::shared_ptr<LoadedPlugin> plugin;
+    std::optional<Error> refused;  // why the changed file was not taken
 };
 
 class PluginLoader {
@@ -59,6 +71,14 @@ class PluginLoader {
     // directory. Errors name the file and what is wrong (no entry point, wrong ABI, malformed
     // descriptor, an id other than the one asked for), or list where it looked.
     Result<std::shared_ptr<LoadedPlugin>> load(const std::string& id);
+
+    // Checks every plugin loaded by id against the file it came from: a file whose bytes
+    // (SHA-256) differ from those loaded goes through the admission hook again and is opened;
+    // it then serves later load() calls for that id, while the old library stays loaded as
+    // long as something holds it. A changed file that is refused, gone, broken or declares
+    // another id leaves the old plugin serving, and the outcome says why. One outcome per
+    // plugin, in id order.
+    std::vector<PluginReloadOutcome> reload_changed();
 
     // Loads one file, whatever its id (the admission hook gets an empty id).
     Result<std::shared_ptr<LoadedPlugin>> load_file(const std::filesystem::path& file);

@@ -194,6 +194,17 @@ struct LeftOutEffect {
     std::string message;  // why, the line the load would have failed with
 };
 
+// What Host::reload_plugins() found for one plugin the Host has loaded.
+struct PluginReload {
+    std::string plugin;  // its id
+    std::filesystem::path file;
+    bool changed = false;         // the file's bytes differ from those loaded
+    uint32_t scenes_rebuilt = 0;  // scenes of this Host loaded again with the new code
+    // Why the changed file, or a scene with it, was not taken: the policy's refusal, a broken
+    // or missing file, a scene's load error. "" when everything took it.
+    std::string refused;
+};
+
 class Scene;
 
 class Host {
@@ -228,6 +239,15 @@ class Host {
                                                    const std::filesystem::path& base_directory,
                                                    const std::string& name = "scene.json",
                                                    const SceneOptions& options = {});
+
+    // A plugin rebuilt on disk: checks every plugin file this Host has loaded against the
+    // bytes it loaded (SHA-256, one hash per plugin). A changed file goes through the load
+    // policy again; once admitted it serves every later load, and each scene of this Host that
+    // uses the plugin is loaded again with it (its active floor, time and live parameters
+    // kept; its next frame is the new code's). A refused, missing or broken file, or a scene
+    // that fails to load with the new code, leaves the old code rendering that scene, and the
+    // outcome says why. One outcome per loaded plugin.
+    std::vector<PluginReload> reload_plugins();
 
     // Writes the pipeline cache (with HostOptions::pipeline_cache), atomically.
     Result<void> save_pipeline_cache();
