@@ -46,7 +46,7 @@ struct Scene::Loaded {
 
 inline Error error_of(const acetate::Error& e) {
     // The public codes are the internal ones, in the same order (checked in host.cpp).
-    return Error{e.message, ErrorCode(int(e.code))};
+    return Error{e.message, ErrorCode(int(e.code)), e.file, e.field, e.plugin, e.floor};
 }
 
 }  // namespace acetate::host

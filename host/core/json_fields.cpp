@@ -168,8 +168,12 @@ std::vector<std::string> texts(const nlohmann::json& j, const std::string& path,
 }
 
 Error to_error(const JsonFieldError& e, std::string_view label) {
-    return make_error(e.code, e.path.empty() ? fmt::format("{}: {}", label, e.what)
-                                             : fmt::format("{}: {}: {}", label, e.path, e.what));
+    Error error =
+        make_error(e.code, e.path.empty() ? fmt::format("{}: {}", label, e.what)
+                                          : fmt::format("{}: {}: {}", label, e.path, e.what));
+    error.file = std::string(label);
+    error.field = e.path;
+    return error;
 }
 
 }  // namespace acetate::json_fields

@@ -5,6 +5,7 @@
 
 #include <cassert>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -35,6 +36,11 @@ struct Error {
     ErrorCode code = ErrorCode::InvalidInput;
     std::string message;
     int32_t vk_result = 0;
+    // What the error concerns, for a program to act on (the message names them for people);
+    // empty where it concerns none: the file read, the field in it
+    // ("floors[1].effects[0].params.day"), the plugin's id, the floor.
+    std::string file, field, plugin;
+    std::optional<uint32_t> floor;
 };
 
 inline Error make_error(ErrorCode code, std::string message, int32_t vk = 0) {

@@ -34,6 +34,17 @@ Result<double> number_of(const nlohmann::json& value, const std::string& field,
 
 }  // namespace
 
+namespace {
+
+// An error about the entry's field `field` ("floors[0].effects[0].params.day").
+Error in_field(Error error, const std::string& scene_file, std::string field) {
+    error.file = scene_file;
+    error.field = std::move(field);
+    return error;
+}
+
+}  // namespace
+
 Result<ParamVectors> resolve_param_vectors(const EffectDescriptor& d, const EffectRef& ref,
                                            const std::string& scene_file) {
     ParamVectors values;
@@ -56,41 +67,48 @@ Result<ParamVectors> resolve_param_vectors(const EffectDescriptor& d, const Effe
             std::string known;
             for (const auto& [name, unused] : d.presets)
                 known += (known.empty() ? "" : ", ") + name;
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: {}.preset: plugin \"{}\" has no preset \"{}\" "
-                                          "(it has: {})",
-                                          scene_file, ref.where, d.id, ref.preset,
-                                          known.empty() ? "none" : known));
+            return in_field(
+                make_error(ErrorCode::InvalidInput,
+                           fmt::format("{}: {}.preset: plugin \"{}\" has no preset \"{}\" "
+                                       "(it has: {})",
+                                       scene_file, ref.where, d.id, ref.preset,
+                                       known.empty() ? "none" : known)),
+                scene_file, ref.where + ".preset");
         }
         for (const auto& [name, value] : preset->second) set(size_t(d.param_index(name)), 0, value);
     }
     for (const auto& [name, value] : ref.params.items()) {
         const std::string field = fmt::format("{}: {}.params.{}", scene_file, ref.where, name);
+        const auto refused = [&](Error error) {
+            return in_field(std::move(error), scene_file, ref.where + ".params." + name);
+        };
         const int index = d.param_index(name);
         if (index < 0)
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: plugin \"{}\" has no such parameter (it has: {})",
-                                          field, d.id, known_params(d)));
+            return refused(
+                make_error(ErrorCode::InvalidInput,
+                           fmt::format("{}: plugin \"{}\" has no such parameter (it has: {})",
+                                       field, d.id, known_params(d))));
         const EffectParam& p = d.params[size_t(index)];
         if (p.hidden)
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: plugin \"{}\" sets this parameter from its presets "
-                                          "only; choose a preset instead",
-                                          field, d.id));
+            return refused(
+                make_error(ErrorCode::InvalidInput,
+                           fmt::format("{}: plugin \"{}\" sets this parameter from its presets "
+                                       "only; choose a preset instead",
+                                       field, d.id)));
         const uint32_t components = p.components();
         if (components == 1) {
             auto number = number_of(value, field, true);
-            if (!number) return number.error();
+            if (!number) return refused(number.error());
             set(size_t(index), 0, number.value());
             continue;
         }
         if (!value.is_array() || value.size() != components)
-            return make_error(ErrorCode::InvalidInput,
-                              fmt::format("{}: expected an array of {} numbers, got {}", field,
-                                          components, value.dump()));
+            return refused(make_error(ErrorCode::InvalidInput,
+                                      fmt::format("{}: expected an array of {} numbers, got {}",
+                                                  field, components, value.dump())));
         for (uint32_t c = 0; c < components; ++c) {
             auto number = number_of(value[c], fmt::format("{}[{}]", field, c), false);
-            if (!number) return number.error();
+            if (!number) return refused(number.error());
             set(size_t(index), c, number.value());
         }
     }

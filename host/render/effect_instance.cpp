@@ -62,9 +62,20 @@ PixelRect floor_coverage_bounds(const SceneDesc& scene, size_t floor) {
     return bounds;
 }
 
-Result<PreparedInstance> prepare_effect_instance(Renderer& renderer, const SceneDesc& scene,
-                                                 const EffectRef& ref, int64_t floor,
-                                                 const InstanceSetup& setup) {
+namespace {
+
+// The effect entry an error of its instance concerns (Error::file, field, plugin, floor), where
+// the error does not say more precisely already.
+Error concerning(Error error, const SceneDesc& scene, const EffectRef& ref, int64_t floor) {
+    if (error.file.empty()) error.file = scene.file.string();
+    if (error.field.empty()) error.field = ref.where;
+    if (error.plugin.empty()) error.plugin = ref.plugin;
+    if (floor >= 0 && !error.floor) error.floor = uint32_t(floor);
+    return error;
+}
+
+Result<PreparedInstance> prepare(Renderer& renderer, const SceneDesc& scene, const EffectRef& ref,
+                                 int64_t floor, const InstanceSetup& setup) {
     VulkanContext& context = renderer.context();
     const std::string file = scene.file.string();
     auto plugin = renderer.plugins().load(ref.plugin);
@@ -115,11 +126,10 @@ Result<PreparedInstance> prepare_effect_instance(Renderer& renderer, const Scene
     return out;
 }
 
-Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
-                                                               const SceneDesc& scene,
-                                                               const EffectRef& ref, int64_t floor,
-                                                               const InstanceSetup& setup) {
-    auto prepared = prepare_effect_instance(renderer, scene, ref, floor, setup);
+Result<std::unique_ptr<EffectInstance>> create(Renderer& renderer, const SceneDesc& scene,
+                                               const EffectRef& ref, int64_t floor,
+                                               const InstanceSetup& setup) {
+    auto prepared = prepare(renderer, scene, ref, floor, setup);
     if (!prepared) return prepared.error();
     VulkanContext& context = renderer.context();
     const std::string file = scene.file.string();
@@ -227,6 +237,25 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
         instance->has_lights = true;
     }
     return instance;
+}
+
+}  // namespace
+
+Result<PreparedInstance> prepare_effect_instance(Renderer& renderer, const SceneDesc& scene,
+                                                 const EffectRef& ref, int64_t floor,
+                                                 const InstanceSetup& setup) {
+    auto prepared = prepare(renderer, scene, ref, floor, setup);
+    if (!prepared) return concerning(prepared.error(), scene, ref, floor);
+    return prepared;
+}
+
+Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
+                                                               const SceneDesc& scene,
+                                                               const EffectRef& ref, int64_t floor,
+                                                               const InstanceSetup& setup) {
+    auto created = create(renderer, scene, ref, floor, setup);
+    if (!created) return concerning(created.error(), scene, ref, floor);
+    return created;
 }
 
 }  // namespace acetate

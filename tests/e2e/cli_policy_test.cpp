@@ -543,6 +543,11 @@ TEST_F(HostPolicy, TheEmbeddingApiRefusesAndLoadsAsTheCliDoes) {
         EXPECT_TRUE(contains(line, "or set HostOptions::allow_unvalidated")) << line;
         EXPECT_EQ(line.find('\n'), std::string::npos) << line;
         EXPECT_EQ(scene.error().code, host::ErrorCode::PluginRefused);
+        // The same, as values a program can act on.
+        EXPECT_EQ(scene.error().file, (dir_ / "scene.json").string());
+        EXPECT_EQ(scene.error().field, "floors[0].effects[0]");
+        EXPECT_EQ(scene.error().plugin, "acetate.lighting");
+        EXPECT_EQ(scene.error().floor, std::optional<uint32_t>(0u));
         // Asked for, the scene loads without the refused effect (as if not listed) and says so.
         host::SceneOptions leave_out;
         leave_out.leave_out_refused_effects = true;

@@ -75,6 +75,10 @@ TEST_F(EmbeddingApi, InspectsASceneWithoutADevice) {
     ASSERT_FALSE(bad);
     EXPECT_EQ(bad.error().message,
               (dir_ / "bad.json").string() + ": canvas: missing required field \"width\"");
+    EXPECT_EQ(bad.error().file, (dir_ / "bad.json").string());
+    EXPECT_EQ(bad.error().field, "canvas");
+    EXPECT_EQ(bad.error().plugin, "");
+    EXPECT_EQ(bad.error().floor, std::nullopt);
 }
 
 TEST_F(EmbeddingApi, ViewsPrecisionAndPerFloorStatistics) {

@@ -149,29 +149,52 @@ TEST_F(LiveParams, RefusalsNameTheFieldAndLeaveTheFrameAsItWas) {
         std::string param;
         std::vector<float> value;
         std::string expected;
+        std::string field;  // Error::field; with it, the error concerns acetate.lighting on floor 0
     };
     for (const Refusal& r : std::vector<Refusal>{
-             {{5u, 0}, "day", {0.5f}, name + ": floor 5 does not exist (floors 0..0)"},
-             {{0u, 1}, "day", {0.5f}, name + ": floors[0].effects: no effect 1 (it lists 1)"},
+             {{5u, 0}, "day", {0.5f}, name + ": floor 5 does not exist (floors 0..0)", ""},
+             {{0u, 1}, "day", {0.5f}, name + ": floors[0].effects: no effect 1 (it lists 1)", ""},
              {{std::nullopt, 0},
               "day",
               {0.5f},
-              name + ": global_effects: no effect 0 (it lists 0)"},
-             {{0u, 0}, "dusk", {0.5f}, "floors[0].effects[0].params"},
-             {{0u, 0}, "day", {std::nanf("")}, "not a finite number"},
-             {{0u, 0}, "day", {}, "floors[0].effects[0].params.day"},
+              name + ": global_effects: no effect 0 (it lists 0)",
+              ""},
+             {{0u, 0},
+              "dusk",
+              {0.5f},
+              "floors[0].effects[0].params",
+              "floors[0].effects[0].params.dusk"},
+             {{0u, 0},
+              "day",
+              {std::nanf("")},
+              "not a finite number",
+              "floors[0].effects[0].params.day"},
+             {{0u, 0},
+              "day",
+              {},
+              "floors[0].effects[0].params.day",
+              "floors[0].effects[0].params.day"},
          }) {
         SCOPED_TRACE(r.expected);
         auto change = scene->set_param(r.slot, r.param, r.value);
         ASSERT_FALSE(change);
-        EXPECT_NE(change.error().message.find(r.expected), std::string::npos)
-            << change.error().message;
-        EXPECT_EQ(change.error().message.find('\n'), std::string::npos) << "one line";
+        const host::Error& error = change.error();
+        EXPECT_NE(error.message.find(r.expected), std::string::npos) << error.message;
+        EXPECT_EQ(error.message.find('\n'), std::string::npos) << "one line";
+        // What a program's interface is built from, besides the message.
+        EXPECT_EQ(error.field, r.field);
+        if (!r.field.empty()) {
+            EXPECT_EQ(error.file, name);
+            EXPECT_EQ(error.plugin, "acetate.lighting");
+            EXPECT_EQ(error.floor, std::optional<uint32_t>(0u));
+        }
     }
     auto preset = scene->set_preset({0u, 0}, "dawn");
     ASSERT_FALSE(preset);
     EXPECT_NE(preset.error().message.find("floors[0].effects[0].preset"), std::string::npos)
         << preset.error().message;
+    EXPECT_EQ(preset.error().field, "floors[0].effects[0].preset");
+    EXPECT_EQ(preset.error().plugin, "acetate.lighting");
     EXPECT_EQ(render_warm(*scene, 0), before);
 }
 

@@ -6,6 +6,8 @@
 // library.
 
 #include <cassert>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -31,6 +33,12 @@ enum class ErrorCode {
 struct Error {
     std::string message;  // one line, no trailing newline
     ErrorCode code = ErrorCode::InvalidInput;
+    // What it concerns, for a program to build its interface from (the message names the same
+    // for people); each empty where it concerns none. The scene (or other) file read; the field
+    // in it, as the message writes it ("floors[1].effects[0].params.day", "canvas"); the id of
+    // the plugin whose effect it concerns; that effect's floor (none for a global effect).
+    std::string file, field, plugin;
+    std::optional<uint32_t> floor;
 };
 
 template <class T>
