@@ -79,8 +79,9 @@ Result<ParamVectors> resolve_param_vectors(const EffectDescriptor& d, const Effe
     }
     for (const auto& [name, value] : ref.params.items()) {
         const std::string field = fmt::format("{}: {}.params.{}", scene_file, ref.where, name);
+        const std::string param_field = ref.where + ".params." + name;
         const auto refused = [&](Error error) {
-            return in_field(std::move(error), scene_file, ref.where + ".params." + name);
+            return in_field(std::move(error), scene_file, param_field);
         };
         const int index = d.param_index(name);
         if (index < 0)
