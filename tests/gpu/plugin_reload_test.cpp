@@ -1,5 +1,5 @@
 // A plugin rebuilt on disk (Host::reload_plugins): two builds of one id (tests/plugins/
-// reload_v1.cpp halves colour, reload_v2.cpp quarters it) swapped under the Host. An unchanged
+// reload.cpp: reload_v1 halves colour, reload_v2 quarters it) swapped under the Host. An unchanged
 // file reloads nothing; a changed one is taken, and every scene using it renders the new code
 // with its time kept, as a fresh load does; a changed file that is not a plugin, or declares
 // another id, is refused and the scene keeps rendering the old code. Validation layers on.
