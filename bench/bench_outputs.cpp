@@ -55,9 +55,12 @@ Result<void> check_bench_outputs(const BenchOptions& options, const std::optiona
     const std::vector<fs::path> directories =
         PluginLoader::default_directories(options.plugin_paths);
     // The presets a heat map may be named by: those asked for, "default" for a plugin that
-    // declares none, and "off"; the formats: those asked for, and rgba16f for "off".
+    // declares none, and "off"; the formats: those asked for, and rgba16f for "off". Without
+    // --presets, every preset a plugin declares, known only once it is loaded: then any file in
+    // the folder named like one of its heat maps counts as an output.
     std::set<std::string> presets(options.presets.begin(), options.presets.end());
     presets.insert({"default", "off"});
+    std::vector<std::string> heat_map_prefixes;
     std::set<std::string> formats(options.formats.begin(), options.formats.end());
     formats.insert("rgba16f");
     for (size_t s = 0; s < options.scenes.size(); ++s) {
@@ -78,8 +81,16 @@ Result<void> check_bench_outputs(const BenchOptions& options, const std::optiona
             for (const std::string& preset : presets)
                 for (const std::string& format : formats)
                     outputs.push_back({*html / heat_map_name(s, id, preset, format), "--html"});
+            if (options.presets.empty())
+                heat_map_prefixes.push_back(file_safe(fmt::format("heat-s{}-{}-", s, id)));
         }
     }
+    std::error_code ec;
+    for (const RunFile& input : inputs)
+        for (const std::string& prefix : heat_map_prefixes)
+            if (fs::equivalent(input.path.parent_path(), *html, ec) &&
+                input.path.filename().string().rfind(prefix, 0) == 0)
+                outputs.push_back({input.path, "--html"});
     return check_outputs_spare_inputs(outputs, inputs);
 }
 

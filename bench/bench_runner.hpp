@@ -20,7 +20,8 @@ namespace acetate::bench {
 struct BenchOptions {
     std::vector<std::filesystem::path> scenes;
     std::vector<std::string> plugins;  // empty: every plugin each scene names
-    std::vector<std::string> presets{"low", "medium", "high", "ultra"};
+    // Empty: every preset each plugin declares, in its order.
+    std::vector<std::string> presets;
     std::vector<std::string> formats{"rgba16f", "rgba32f"};
     uint32_t frames = 15;           // timed frames per configuration, after the first
     double time = 2.5;              // seconds: the animation time every frame shows

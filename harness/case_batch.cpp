@@ -131,6 +131,7 @@ std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpe
                     "--report",      o.report_directory.string()};
         job.log = dir / "log.txt";
         job.timeout = std::chrono::milliseconds(int64_t(o.timeout_seconds * 1000));
+        job.fresh_process = !spec.validation_layer;  // the server loaded the layer
         jobs.push_back(job);
         directories.push_back(dir);
     }

@@ -73,8 +73,8 @@ class CaseWriter {
     void add(CheckResult check, const std::map<int64_t, ImageRGBA>* heat_maps = nullptr);
     void add_all(std::vector<CheckResult> checks,
                  const std::map<std::string, std::map<int64_t, ImageRGBA>>& heat);
-    // Adds the vulkan-validation check (SKIP when the layer was off in this process) and sets
-    // the case's verdict.
+    // Adds the vulkan-validation check (SKIP when the layer was off in this process; none in a
+    // case run without the layer on purpose) and sets the case's verdict.
     CaseResult finish(bool validation_layer_on);
     CaseResult result;
 

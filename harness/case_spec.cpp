@@ -174,6 +174,7 @@ json to_json(const CaseSpec& s) {
             {"plugin_floor", s.plugin_floor},
             {"frames", s.frames},
             {"prior_loads", s.prior_loads},
+            {"validation_layer", s.validation_layer},
             {"sweep", s.sweep},
             {"poison", to_string(s.poison)},
             {"inputs", s.inputs},
@@ -212,12 +213,13 @@ CaseKind case_kind_field(const json& j, const std::string& path) {
 
 CaseSpec read_case_spec(const json& j, const std::string& path) {
     using namespace json_fields;
-    expect_object(
-        j, path, {"id",         "description", "kind",   "seed",         "width",  "height",
-                  "pattern",    "floors",      "params", "preset",       "time",   "switches",
-                  "companions", "lights",      "masks",  "plugin_floor", "frames", "prior_loads",
-                  "sweep",      "poison",      "inputs", "floor_variant"},
-        {"reference", "scene_file", "effects_before", "effects_after", "format", "relation"});
+    expect_object(j, path,
+                  {"id",         "description", "kind",   "seed",         "width",  "height",
+                   "pattern",    "floors",      "params", "preset",       "time",   "switches",
+                   "companions", "lights",      "masks",  "plugin_floor", "frames", "prior_loads",
+                   "sweep",      "poison",      "inputs", "floor_variant"},
+                  {"reference", "scene_file", "effects_before", "effects_after", "format",
+                   "relation", "validation_layer"});
     CaseSpec s;
     s.id = text(j, path, "id");
     s.description = text(j, path, "description");
@@ -238,6 +240,8 @@ CaseSpec read_case_spec(const json& j, const std::string& path) {
     s.plugin_floor = int32_t(plugin_floor);
     s.frames = uint32_t(unsigned_integer(j, path, "frames", UINT32_MAX));
     s.prior_loads = uint32_t(unsigned_integer(j, path, "prior_loads", UINT32_MAX));
+    if (const json* layer = optional(j, "validation_layer"))
+        s.validation_layer = boolean(*layer, field(path, "validation_layer"));
     s.sweep = array(j.at("sweep"), field(path, "sweep")).get<std::vector<json>>();
     const std::string inputs_path = field(path, "inputs");
     const json& inputs = j.at("inputs");

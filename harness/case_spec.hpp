@@ -153,6 +153,10 @@ struct CaseSpec {
     int32_t plugin_floor = -1;  // a floor effect on this floor only; -1: on every floor
     uint32_t frames = 1;        // frames rendered in the load, the last one checked
     uint32_t prior_loads = 0;   // other scenes loaded and rendered in the process first
+    // Whether the case's process loads the Khronos validation layer. A case without it runs in
+    // a process started afresh (not forked from the server, which loaded the layer), as users
+    // run their hosts; its output is compared with the same case's output with the layer.
+    bool validation_layer = true;
     // Contract: parameter sets rendered one after the other in this process, each in a load of
     // its own (a parameter swept over its range); empty: `params` alone.
     std::vector<nlohmann::json> sweep;

@@ -43,21 +43,25 @@ constexpr std::array kChecks = {
               "a plugin call (load, build, unload) that changed the floating-point environment, "
               "a signal disposition or the signal mask, an environment variable, the open "
               "descriptors, the number of threads, the working folder, the umask or the locale"},
-    CheckInfo{"vulkan-validation", "none: no undefined behaviour in Vulkan", "every case", true,
-              true, "any warning or error of the Khronos validation layer in the case's process"},
+    CheckInfo{"vulkan-validation", "none: no undefined behaviour in Vulkan",
+              "every case but `determinism/without-layer`", true, true,
+              "any warning or error of the Khronos validation layer in the case's process"},
     CheckInfo{"determinism", "5",
-              "`determinism/run-1`, `determinism/run-2`, `determinism/after-history`", true, true,
+              "`determinism/run-1`, `determinism/run-2`, `determinism/after-history`, "
+              "`determinism/without-layer`",
+              true, true,
               "two frames in one process, or the outputs of two processes (one fresh, one after "
-              "other loads and frames), not bit-identical; memory read before written differs "
-              "between processes (poisoned)"},
+              "other loads and frames, one without the validation layer), not bit-identical; "
+              "memory read before written differs between processes (poisoned)"},
     CheckInfo{"state-isolation", "6", "`isolation/state`", true, true,
               "floor 0 changed by rendering floor 1 in between; floor 1 changed by floor 0's "
               "instance; a second load rendering differently"},
     CheckInfo{"memory", "none: a plugin must not leak", "`isolation/state`", true, true,
-              "after a warm-up, a floor switch that allocates a target, loads an image, compiles "
-              "a shader or creates a pipeline; a change in the number of images held; resident "
-              "memory growing by more than 1 MiB over the switches, or by more than 2 MiB over "
-              "repeated loads of the scene (a leak in `build()`)"},
+              "after a warm-up, a frame (time advancing, the floor switching) that allocates a "
+              "target, loads an image, compiles a shader or creates a pipeline; a change in the "
+              "number of images held; resident memory growing by more than 1 MiB over the "
+              "frames, or by more than 2 MiB over repeated loads of the scene (a leak in "
+              "`build()`)"},
     CheckInfo{"floor-isolation", "6", "`isolation/floors`", true, true,
               "the effect on floor 1 changing the composite where floor 1's output has alpha 0"},
     CheckInfo{"disconnected-parameters", "none: a declared parameter must change something",

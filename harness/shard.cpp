@@ -182,6 +182,29 @@ Result<std::vector<ShardResult>> read_shard_results(const std::vector<fs::path>&
     return all;
 }
 
+Result<ValidationStage> merged_run_goal(const std::vector<ShardResult>& results,
+                                        const std::vector<fs::path>& folders) {
+    ValidationStage goal = ValidationStage::AlphaTested;
+    for (const ShardResult& r : results)
+        if (r.stage == ValidationStage::Integrated) goal = ValidationStage::Integrated;
+    for (const fs::path& folder : folders) {
+        std::error_code ec;
+        if (!fs::exists(folder / "plan.json", ec)) continue;  // results of --case runs
+        auto plan = read_shard_plan(folder);
+        if (!plan) return plan.error();
+        const ShardResult& first = results.front();
+        if (plan->binary_sha256 != first.plugin.binary_sha256 ||
+            plan->strictness != first.strictness || plan->seed != first.seed)
+            return make_error(ErrorCode::InvalidInput,
+                              fmt::format("{}: the plan of another run (its plugin binary, "
+                                          "strictness or seed differ from the results')",
+                                          (folder / "plan.json").string()));
+        for (const PlannedCase& c : plan->cases)
+            if (c.stage == ValidationStage::Integrated) goal = ValidationStage::Integrated;
+    }
+    return goal;
+}
+
 std::optional<std::string> missing_results(const std::vector<PlannedCase>& plan,
                                            const std::vector<ShardResult>& results,
                                            const fs::path& folder) {

@@ -66,6 +66,14 @@ Result<void> write_shard_result(const ShardOutput& out, ValidationStage stage, c
 Result<std::vector<ShardResult>> read_shard_results(
     const std::vector<std::filesystem::path>& folders, const SignatureVerifier& runners);
 
+// For a merge: the stage the shards' run was asked to reach. INTEGRATED when a result is of
+// that stage, or when the plan a shard left in one of `folders` (plan.json) has an integration
+// case: a run's few integration cases may all belong to a shard that has not run yet, and the
+// merge must then name them as owed rather than judge the alpha stage alone. A plan.json that
+// is there but cannot be read, or is another run's, is an error naming it.
+Result<ValidationStage> merged_run_goal(const std::vector<ShardResult>& results,
+                                        const std::vector<std::filesystem::path>& folders);
+
 // For a merge: every case of `plan` with no result in `results` (read from `folder`), named in
 // one error by the shard that owes it (shard_plan.hpp, missing_by_shard), so that one
 // re-submission completes the run; nothing when every case has one.

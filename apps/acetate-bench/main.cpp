@@ -135,10 +135,12 @@ int run_scaling_study(uint32_t frames, const std::vector<std::string>& plugin_pa
 int main(int argc, char** argv) {
     CLI::App app{
         "acetate-bench: frame time, GPU time per pass, pixels shaded and error against the "
-        "reference (ultra, rgba32f) for every plugin x preset x format of each scene"};
+        "reference (ultra, or a plugin's last preset; rgba32f) for every plugin x preset x "
+        "format of each scene"};
     BenchOptions options;
     std::vector<std::string> scenes;
-    std::string plugins, presets = "low,medium,high,ultra", formats = "rgba16f,rgba32f";
+    std::string plugins, formats = "rgba16f,rgba32f";
+    std::optional<std::string> presets;
     std::optional<std::string> html, json;
     std::optional<uint32_t> floor;
     std::vector<std::string> plugin_paths;
@@ -152,7 +154,8 @@ int main(int argc, char** argv) {
                  "with a fitted cost model, as markdown");
     app.add_option("--plugins", plugins,
                    "comma-separated plugin ids (default: every plugin named)");
-    app.add_option("--presets", presets, "comma-separated presets")->capture_default_str();
+    app.add_option("--presets", presets,
+                   "comma-separated presets (default: every preset each plugin declares)");
     app.add_option("--formats", formats, "comma-separated target formats")->capture_default_str();
     // Numbers go through the one reader (apps/flag_values.hpp): finite, in range, no wrap.
     flags::add_number(&app, "--frames", options.frames, 1, 10000,
@@ -185,9 +188,9 @@ int main(int argc, char** argv) {
     if (scenes.empty()) return fail("expected at least one scene file (or --hard-cases)");
     for (const auto& s : scenes) options.scenes.emplace_back(s);
     options.plugins = split_list(plugins);
-    options.presets = split_list(presets);
+    if (presets) options.presets = split_list(*presets);
     options.formats = split_list(formats);
-    if (options.presets.empty()) return fail("--presets: expected at least one preset");
+    if (presets && options.presets.empty()) return fail("--presets: expected at least one preset");
     if (options.formats.empty()) return fail("--formats: expected at least one format");
     options.floor = floor;
     for (const auto& p : plugin_paths) options.plugin_paths.emplace_back(p);

@@ -472,10 +472,9 @@ int run_harness(int argc, char** argv) {
             validate.plugin = first.plugin.file;
             validate.strictness = first.strictness;
             validate.seed = first.seed;
-            validate.up_to = ValidationStage::AlphaTested;
-            for (const ShardResult& r : *shards)
-                if (r.stage == ValidationStage::Integrated)
-                    validate.up_to = ValidationStage::Integrated;
+            auto goal = merged_run_goal(*shards, merge_folders);
+            if (!goal) return fail(goal.error().message);
+            validate.up_to = goal.value();
             inputs.push_back({validate.plugin, "the plugin"});
             if (auto spared = check_validate_outputs(validate, inputs); !spared)
                 return fail(spared.error().message);

@@ -35,19 +35,22 @@ std::vector<ImageInfo> infos_of(const std::vector<TargetInfo>& targets) {
 }
 
 // Gives one effect of the scene the entry `edit` makes of its current one: in place when its
-// build() declares the same graph, else by loading the scene again with it (the old scene
-// keeps rendering if that load fails).
+// build() declares the same graph, by building that effect again when it declares another,
+// and by loading the scene again only when the floor's plan depends on the change (the old
+// scene keeps rendering if anything fails).
 Result<ParamChange> change_effect(Scene::Loaded& loaded, const EffectSlot& slot,
                                   const std::function<void(EffectRef&)>& edit) {
     const auto start = std::chrono::steady_clock::now();
+    const ResourceCounters before = loaded.host->context->counters();
     auto current = loaded.compositor->effect_ref(slot.floor, slot.index);
     if (!current) return error_of(current.error());
     EffectRef ref = std::move(current.value());
     edit(ref);
-    auto in_place = loaded.compositor->set_effect_ref(slot.floor, slot.index, ref);
-    if (!in_place) return error_of(in_place.error());
+    auto done = loaded.compositor->set_effect_ref(slot.floor, slot.index, ref);
+    if (!done) return error_of(done.error());
     ParamChange change;
-    if (!in_place.value()) {
+    change.rebuilt = done.value() == Compositor::EffectChange::Rebuilt;
+    if (done.value() == Compositor::EffectChange::NeedsLoad) {
         SceneDesc desc = loaded.compositor->scene();
         (slot.floor ? desc.floors[*slot.floor].effects : desc.global_effects)[slot.index] = ref;
         auto compositor = Compositor::load(*loaded.host->renderer, desc, loaded.options);
@@ -57,6 +60,11 @@ Result<ParamChange> change_effect(Scene::Loaded& loaded, const EffectSlot& slot,
         loaded.rendered = false;  // read_frame() wants a frame of this scene
         change.reloaded = true;
     }
+    const ResourceCounters used = loaded.host->context->counters() - before;
+    change.images_loaded = used.images_loaded;
+    change.targets_allocated = used.targets_allocated;
+    change.shaders_compiled = used.shaders_compiled;
+    change.pipelines_created = used.pipelines_created;
     change.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return change;

@@ -50,9 +50,10 @@ ChildOutcome spawn(const ChildJob& job, pid_t& pid) {
     return outcome;
 }
 
-// From the fork server when there is one and it can; spawned otherwise.
+// From the fork server when there is one, the job allows it and the server can; spawned
+// otherwise.
 ChildOutcome launch(const ChildJob& job, ForkServer* server, pid_t& pid) {
-    if (server) {
+    if (server && !job.fresh_process) {
         std::string error;
         pid = server->launch(job.argv, job.log.string(), error);
         if (pid > 0) {

@@ -23,6 +23,9 @@ struct ChildJob {
     // when it has run `wall_factor` times this long whatever it used.
     std::chrono::milliseconds timeout{60000};
     double wall_factor = 4;
+    // Spawned afresh even when a fork server is given: a child that must not inherit what the
+    // server loaded (a case run without the validation layer).
+    bool fresh_process = false;
 };
 
 struct ChildOutcome {

@@ -14,6 +14,11 @@ bool is_simple_name(const std::string& name) {
     return std::regex_match(name, pattern);
 }
 
+bool is_preset_name(const std::string& name) {
+    static const std::regex pattern("[a-z][a-z0-9_-]*");
+    return name.size() <= kMaxPresetNameLength && std::regex_match(name, pattern);
+}
+
 int EffectDescriptor::param_index(const std::string& name) const {
     for (size_t i = 0; i < params.size(); ++i)
         if (params[i].name == name) return int(i);
@@ -153,17 +158,19 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d,
     }
 
     if (d->preset_count && !d->presets) return bad(where, "preset_count > 0 but presets is NULL");
-    static const std::set<std::string> kPresets{"low", "medium", "high", "ultra"};
     for (uint32_t i = 0; i < d->preset_count; ++i) {
         const AcetatePresetDesc& preset = d->presets[i];
         const std::string name = preset.name ? preset.name : "";
-        if (!kPresets.count(name))
-            return bad(where, fmt::format("presets[{}] \"{}\": expected low, medium, high or ultra",
-                                          i, name));
+        if (!is_preset_name(name))
+            return bad(where, fmt::format("presets[{}] \"{}\": a preset's name is 1 to {} "
+                                          "lower-case letters, digits, '-' or '_', starting with "
+                                          "a letter",
+                                          i, name, kMaxPresetNameLength));
         if (out.presets.count(name))
             return bad(where, fmt::format("presets[{}] \"{}\": duplicate", i, name));
         if (preset.value_count && !preset.values)
             return bad(where, fmt::format("presets[{}]: value_count > 0 but values is NULL", i));
+        out.preset_order.push_back(name);
         auto& values = out.presets[name];
         for (uint32_t v = 0; v < preset.value_count; ++v) {
             const std::string param = preset.values[v].param ? preset.values[v].param : "";

@@ -34,6 +34,9 @@ struct EffectDescriptor {
     std::vector<std::string> masks;
     std::vector<EffectParam> params;
     std::map<std::string, std::map<std::string, float>> presets;  // name -> param -> value
+    // The presets' names as the plugin declared them: from its cheapest to its best by the
+    // SDK's convention (acetate-bench measures error against the last when there is no ultra).
+    std::vector<std::string> preset_order;
 
     int param_index(const std::string& name) const;
     std::string version_string() const;
@@ -53,5 +56,9 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* descript
 
 // [a-z][a-z0-9_]* -- the names of parameters, targets, passes and mask kinds.
 bool is_simple_name(const std::string& name);
+// A preset's name: 1 to kMaxPresetNameLength of [a-z0-9_-], starting with a letter ("low",
+// "ultra", "draft", "print-300dpi"): a scene file and a command line name it.
+inline constexpr size_t kMaxPresetNameLength = 32;
+bool is_preset_name(const std::string& name);
 
 }  // namespace acetate

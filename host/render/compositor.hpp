@@ -139,15 +139,20 @@ class Compositor {
     // the frame clear and draw the active floor's whole target; InvalidInput otherwise.
     Result<ImageRGBA> read_active_floor();
 
+    // What set_effect_ref did.
+    enum class EffectChange {
+        Values,     // the same graph: the new values reach the next frame through its uniforms
+        Rebuilt,    // another graph: this effect alone was built again (pipelines from the pool)
+        NeedsLoad,  // another graph that changes what the load planned around it (coverage,
+                    // reach, whether it runs at all): nothing changed; load the scene again
+    };
     // Live parameters (compositor_params.cpp): gives effect `index` of floor `floor` (empty: of
     // the global effects), counted in the scene's own list, the entry `ref` (the scene's entry
-    // with other params or another preset). Its build() runs again; when it declares the same
-    // graph, later frames use the new values and nothing is allocated or compiled: returns
-    // true. When it declares another graph, nothing changes and it returns false: the caller
-    // loads the scene again with `ref` in it. Refusals (no such effect, a parameter refused,
-    // build() failing) name the scene file and the effect's field and change nothing.
-    Result<bool> set_effect_ref(std::optional<uint32_t> floor, uint32_t index,
-                                const EffectRef& ref);
+    // with other params or another preset). Its build() runs again. Refusals (no such effect, a
+    // parameter refused, build() failing, its passes failing to compile) name the scene file
+    // and the effect's field and change nothing.
+    Result<EffectChange> set_effect_ref(std::optional<uint32_t> floor, uint32_t index,
+                                        const EffectRef& ref);
     // The scene's entry of that effect as it stands; refused (naming the file and field) when
     // the floor or the effect does not exist.
     Result<EffectRef> effect_ref(std::optional<uint32_t> floor, uint32_t index) const;

@@ -197,6 +197,8 @@ Result<void> Compositor::ensure_host_pipelines() {
 // reach, or the whole canvas when one declared none.
 void Compositor::plan_geometry(const SceneDesc& scene) {
     geometry_ = resources_->geometry();
+    expansion_areas_.clear();  // planned again when a live change moves an effect's reach
+    shading_rects_.clear();
     const PixelRect canvas{0, 0, int64_t(scene.width), int64_t(scene.height)};
     for (uint32_t f = 0; f < floor_count(); ++f) {
         const bool expanding = expands(f);

@@ -2,8 +2,11 @@
 // plugin's build() runs again with the new values; when it declares exactly the graph it
 // declared before (effect_graph_digest), the values reach the next frame through the uniforms
 // each frame writes anyway, and nothing is allocated, loaded or compiled. A different graph
-// (another number of passes, other floor data) is left to the caller, which loads the scene
-// again: this file never half-replaces an instance.
+// (another number of passes, other floor data, another reach) replaces that one instance whole:
+// its passes compiled (or found in the pool), its targets and buffers made, the planner's
+// areas made again for a new reach, every pipeline warmed as at load. Only a graph that
+// changes what the load chose around the effect (its coverage, whether it declares anything)
+// is left to the caller, which loads the scene again.
 #include <fmt/format.h>
 
 #include "render/compositor.hpp"
@@ -39,8 +42,8 @@ Compositor::EffectPosition Compositor::effect_position(std::optional<uint32_t> f
     return position;
 }
 
-Result<bool> Compositor::set_effect_ref(std::optional<uint32_t> floor, uint32_t index,
-                                        const EffectRef& ref) {
+Result<Compositor::EffectChange> Compositor::set_effect_ref(std::optional<uint32_t> floor,
+                                                            uint32_t index, const EffectRef& ref) {
     auto current = effect_ref(floor, index);
     if (!current) return current.error();
     std::vector<EffectRef>& refs = floor ? scene_.floors[*floor].effects : scene_.global_effects;
@@ -69,12 +72,41 @@ Result<bool> Compositor::set_effect_ref(std::optional<uint32_t> floor, uint32_t 
     auto& instances = floor ? floor_effects_[*floor] : global_effects_;
     for (auto& instance : instances) {
         if (instance->scene_index != index) continue;
-        if (instance->graph_digest != prepared->instance->graph_digest) return false;
-        instance->params = prepared->instance->params;
+        if (instance->graph_digest == prepared->instance->graph_digest) {
+            instance->params = prepared->instance->params;
+            refs[index] = std::move(updated);
+            return EffectChange::Values;
+        }
+        // The floor's targets and host passes were chosen for this coverage, and for an
+        // effect that runs; another reach only moves the planner's areas (planned again).
+        const EffectInstance& next = *prepared->instance;
+        if (next.expanding != instance->expanding || prepared->graph.passes.empty())
+            return EffectChange::NeedsLoad;
+        const bool reach_changed = next.reach != instance->reach;
+        setup.targets = &targets_.effect_targets();
+        auto created =
+            create_effect_instance(renderer_, scene_, updated, floor ? int64_t(*floor) : -1, setup,
+                                   std::move(prepared.value()));
+        if (!created) return created.error();
+        created.value()->scene_index = index;
+        const GpuImage& blank_texture = renderer_.effect_pipelines().blank_texture();
+        if (floor)
+            bind_pass_masks(*created.value(), &resources_->floors()[*floor].masks,
+                            resources_->blank_mask() ? *resources_->blank_mask() : blank_texture);
+        else
+            bind_pass_masks(*created.value(), nullptr, blank_texture);
+        // The frames before used the old instance's buffers: they are finished (every frame
+        // is waited for), so it can go now.
+        instance = std::move(created.value());
         refs[index] = std::move(updated);
-        return true;
+        if (reach_changed) plan_geometry(scene_);
+        // As at load: every pipeline draws once (lavapipe compiles at the first draw) and
+        // every target starts cleared, so the next frame compiles nothing.
+        ACETATE_TRY(warm_pipelines());
+        if (timer_) create_timer();  // one mark per pass: the count may have changed
+        return EffectChange::Rebuilt;
     }
-    return false;  // dropped at load (it declared nothing there): only a load can add it
+    return EffectChange::NeedsLoad;  // dropped at load (it declared nothing there)
 }
 
 }  // namespace acetate

@@ -127,10 +127,8 @@ Result<PreparedInstance> prepare(Renderer& renderer, const SceneDesc& scene, con
 }
 
 Result<std::unique_ptr<EffectInstance>> create(Renderer& renderer, const SceneDesc& scene,
-                                               const EffectRef& ref, int64_t floor,
-                                               const InstanceSetup& setup) {
-    auto prepared = prepare(renderer, scene, ref, floor, setup);
-    if (!prepared) return prepared.error();
+                                               const EffectRef& ref, const InstanceSetup& setup,
+                                               PreparedInstance* prepared) {
     VulkanContext& context = renderer.context();
     const std::string file = scene.file.string();
     std::unique_ptr<EffectInstance> instance = std::move(prepared->instance);
@@ -253,7 +251,17 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
                                                                const SceneDesc& scene,
                                                                const EffectRef& ref, int64_t floor,
                                                                const InstanceSetup& setup) {
-    auto created = create(renderer, scene, ref, floor, setup);
+    auto prepared = prepare(renderer, scene, ref, floor, setup);
+    if (!prepared) return concerning(prepared.error(), scene, ref, floor);
+    return create_effect_instance(renderer, scene, ref, floor, setup, std::move(prepared.value()));
+}
+
+Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
+                                                               const SceneDesc& scene,
+                                                               const EffectRef& ref, int64_t floor,
+                                                               const InstanceSetup& setup,
+                                                               PreparedInstance prepared) {
+    auto created = create(renderer, scene, ref, setup, &prepared);
     if (!created) return concerning(created.error(), scene, ref, floor);
     return created;
 }

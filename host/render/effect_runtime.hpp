@@ -109,6 +109,12 @@ Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& rendere
                                                                const SceneDesc& scene,
                                                                const EffectRef& ref, int64_t floor,
                                                                const InstanceSetup& setup);
+// The same from an instance prepare_effect_instance made (its build() already run).
+Result<std::unique_ptr<EffectInstance>> create_effect_instance(Renderer& renderer,
+                                                               const SceneDesc& scene,
+                                                               const EffectRef& ref, int64_t floor,
+                                                               const InstanceSetup& setup,
+                                                               PreparedInstance prepared);
 
 // The pixels a floor's tiles cover (the union of their rects, clipped to the canvas).
 PixelRect floor_coverage_bounds(const SceneDesc& scene, size_t floor);

@@ -104,6 +104,12 @@ Result<void> VulkanContext::preload_libraries(const ContextOptions& options) {
     return {};
 }
 
+bool VulkanContext::validation_layer_loaded() {
+    for (const std::string& name : loaded_objects())
+        if (name.find("libVkLayer_khronos_validation") != std::string::npos) return true;
+    return false;
+}
+
 VulkanContext::~VulkanContext() {
     if (device_) {
         vkDeviceWaitIdle(device_);

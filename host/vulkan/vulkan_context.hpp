@@ -52,6 +52,10 @@ class VulkanContext {
     // starts with them loaded and relocated: on lavapipe, relocating LLVM and the validation
     // layer against the 260 libraries OpenImageIO brings is most of a short case's start.
     static Result<void> preload_libraries(const ContextOptions& options);
+    // Whether the Khronos validation layer's library is loaded in this process (by a context
+    // made with validation, or preloaded): a context made without validation does not unload
+    // it, so a process that must run without the layer checks this.
+    static bool validation_layer_loaded();
     ~VulkanContext();
     VulkanContext(const VulkanContext&) = delete;
     VulkanContext& operator=(const VulkanContext&) = delete;

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "test_files.hpp"
 
@@ -120,6 +121,35 @@ TEST(BenchCli, ReportsEveryConfigurationWithTheReferenceAtZeroError) {
     ASSERT_EQ(results["peers"].size(), 1u) << results.dump(2);
     EXPECT_LE(results["peers"][0]["difference"]["max_abs"].get<double>(), 1.0 / 1024)
         << results["peers"][0].dump(2);
+}
+
+// A plugin whose presets are "draft" and "final": without --presets the bench runs every preset
+// it declares, and the reference is its last one, as there is no "ultra".
+TEST(BenchCli, APluginsOwnPresetsAreRunAndTheLastIsTheReference) {
+    const fs::path dir = test::scratch_dir();
+    std::string text = test::read_file(tiny_scene(dir));
+    const std::string lighting = "\"plugin\": \"acetate.lighting\"";
+    text.replace(text.find(lighting), lighting.size(), "\"plugin\": \"test.named_presets\"");
+    const fs::path scene = test::write_text(dir / "named.json", text);
+    const auto run =
+        run_bench(dir, "--plugin-path '" + std::string(ACETATE_TEST_PLUGIN_DIR) + "' '" +
+                           scene.string() + "' --formats rgba16f --frames 1 --no-peers --json '" +
+                           (dir / "bench.json").string() + "'");
+    ASSERT_EQ(run.code, 0) << run.describe();
+    const json results = json::parse(test::read_file(dir / "bench.json"));
+    std::set<std::string> presets;
+    for (const json& c : results["configs"]) {
+        if (c["preset"] == "off") continue;
+        presets.insert(c["preset"].get<std::string>());
+        if (c["reference"].get<bool>()) {
+            EXPECT_EQ(c["preset"], "final") << c.dump();
+            EXPECT_EQ(c["error"]["max_abs"].get<double>(), 0.0) << c.dump();
+        } else {
+            // draft keeps 0.5 of the colour where final keeps 0.9: it differs.
+            EXPECT_GT(c["error"]["max_abs"].get<double>(), 0.0) << c.dump();
+        }
+    }
+    EXPECT_EQ(presets, (std::set<std::string>{"draft", "final"})) << results.dump(2);
 }
 
 TEST(BenchCli, BadInputGetsOneLineNamingIt) {

@@ -1,13 +1,15 @@
 // Live parameters through the embedding API (Scene::set_param, Scene::set_preset): the next
 // frame is, bit for bit, what a fresh load of the scene file with those values in it renders;
 // a value that keeps the effect's passes rebuilds nothing (no load, allocation or compile in
-// the change or in the frame); a value that changes them loads the scene again and says so;
-// a refusal names the field and leaves the frame as it was. Validation layers on.
+// the change or in the frame); a value that changes them rebuilds that effect alone (no image
+// decoded, and the next frame compiles nothing), its reach planned again on a floor; a refusal
+// names the field and leaves the frame as it was. Validation layers on.
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 
 #include "acetate/host/host.hpp"
 #include "api_host.hpp"
@@ -110,19 +112,21 @@ TEST_F(LiveParams, AGlobalEffectsValueAndAValueThatChangesItsPasses) {
               fresh_frame(
                   file, [](json& s) { s["global_effects"][0]["params"]["threshold"] = 0.4; }, 0));
 
-    // "levels" is the depth of bloom's mip chain: another number of passes, so a new load,
-    // which keeps the threshold set before.
+    // "levels" is the depth of bloom's mip chain: another number of passes, so bloom is built
+    // again, alone, keeping the threshold set before; the scene's images are not decoded again.
     auto levels = scene->set_param(bloom, "levels", {3.0f});
     ASSERT_TRUE(levels) << levels.error().message;
-    EXPECT_TRUE(levels->reloaded);
-    EXPECT_EQ(render(*scene, 0), fresh_frame(
-                                     file,
-                                     [](json& s) {
-                                         json& p = s["global_effects"][0]["params"];
-                                         p["threshold"] = 0.4;
-                                         p["levels"] = 3;
-                                     },
-                                     0));
+    EXPECT_TRUE(levels->rebuilt);
+    EXPECT_FALSE(levels->reloaded);
+    EXPECT_EQ(levels->images_loaded, 0u);
+    EXPECT_EQ(render_warm(*scene, 0), fresh_frame(
+                                          file,
+                                          [](json& s) {
+                                              json& p = s["global_effects"][0]["params"];
+                                              p["threshold"] = 0.4;
+                                              p["levels"] = 3;
+                                          },
+                                          0));
 
     auto preset = scene->set_preset(bloom, "low");
     ASSERT_TRUE(preset) << preset.error().message;
@@ -135,6 +139,49 @@ TEST_F(LiveParams, AGlobalEffectsValueAndAValueThatChangesItsPasses) {
                                          e["params"]["levels"] = 3;
                                      },
                                      0));
+    EXPECT_EQ(host_->validation_messages(), 0u);
+}
+
+// Fire's reach is how far its particles can rise and spread: higher smoke declares a longer
+// one, so the floor's shaded area (its tile, shrunk to the bottom of the canvas, grown by the
+// reach) is planned again: the frame shades what a fresh load with that smoke shades, and is
+// that load's frame bit for bit.
+TEST_F(LiveParams, AFloorEffectsNewReachRebuildsItAndPlansItsFloorAgain) {
+    const fs::path file = test::write_edited_scene(
+        test::quay_scene("acetate.fire"),
+        [](json& s) {
+            s["floors"][0]["tiles"][0]["rect"] = {100, 120, 200, 72};
+        },
+        dir_ / "small-tile.json");
+    const auto higher = [](json& s) {
+        s["floors"][0]["effects"][0]["params"]["smoke_height"] = 1000;
+    };
+    // The floor's step in a frame of `scene` at 0.25 s: its scissor and the pixels it shaded.
+    const auto step = [](host::Scene& scene) {
+        EXPECT_TRUE(scene.set_time(0.25));
+        auto stats = scene.render();
+        EXPECT_TRUE(stats) << stats.error().message;
+        return stats ? stats->floors.at(0) : host::StepStatistics{};
+    };
+    auto scene = host_->load_scene_file(file);
+    ASSERT_TRUE(scene) << scene.error().message;
+    const host::StepStatistics before = step(**scene);
+
+    auto change = (*scene)->set_param({0, 0}, "smoke_height", {1000.0f});
+    ASSERT_TRUE(change) << change.error().message;
+    EXPECT_TRUE(change->rebuilt);
+    EXPECT_FALSE(change->reloaded);
+    EXPECT_EQ(change->images_loaded, 0u);
+    const host::StepStatistics after = step(**scene);
+    auto fresh =
+        host_->load_scene_file(test::write_edited_scene(file, higher, dir_ / "higher.json"));
+    ASSERT_TRUE(fresh) << fresh.error().message;
+    const host::StepStatistics expected = step(**fresh);
+    EXPECT_NE(expected.y, before.y) << "the test needs a reach that moves the area";
+    EXPECT_EQ(
+        std::tie(after.x, after.y, after.width, after.height, after.pixels_shaded),
+        std::tie(expected.x, expected.y, expected.width, expected.height, expected.pixels_shaded));
+    EXPECT_EQ(render_warm(**scene, 0.25), render(**fresh, 0.25));
     EXPECT_EQ(host_->validation_messages(), 0u);
 }
 

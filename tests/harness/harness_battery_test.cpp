@@ -324,6 +324,23 @@ void watched_only(const HarnessRun& run) {
         << "the layer was still on: " << validation->dump(2);
 }
 
+// layer_aware: only the process without the validation layer renders differently, and the
+// comparison with run-1 says so; a second process with the layer agrees.
+void layer_aware(const HarnessRun& run) {
+    const json* without = run.find_case("determinism/without-layer");
+    ASSERT_NE(without, nullptr);
+    const json* check = HarnessRun::find_check(*without, "determinism");
+    ASSERT_NE(check, nullptr);
+    EXPECT_EQ((*check)["verdict"], "FAIL") << check->dump(2);
+    EXPECT_TRUE(contains((*check)["message"].get<std::string>(), "without the Vulkan validation"))
+        << (*check)["message"];
+    EXPECT_EQ(HarnessRun::find_check(*without, "vulkan-validation"), nullptr)
+        << "the case ran without the layer, so the layer judged nothing there";
+    const json* run2 = run.find_case("determinism/run-2");
+    ASSERT_NE(run2, nullptr);
+    EXPECT_EQ((*HarnessRun::find_check(*run2, "determinism"))["verdict"], "PASS");
+}
+
 // undeclared_expansion: alpha grew although the plugin declares coverage-preserving.
 void undeclared_expansion(const HarnessRun& run) {
     size_t examples = 0;
@@ -365,6 +382,9 @@ const std::vector<Expectation> kPlugins = {
     // Correct only with the harness's switch in its environment, which the case's child takes
     // out once the validation layer is on: caught where a user would see it.
     {"watched_only", {"finite"}, {}, false, watched_only},
+    // Correct only while the layer's library is in its process: caught where the case's
+    // process never loaded it.
+    {"layer_aware", {"determinism"}, {}, false, layer_aware},
     // A control for the check above: a periodic parameter (equal ends) is connected.
     {"periodic_azimuth", {}, {}, false, periodic_azimuth},
     {"undeclared_expansion", {"coverage"}, {}, false, undeclared_expansion},

@@ -147,6 +147,30 @@ TEST(EffectDescriptor, APresetCannotSetAVectorParam) {
               "set scalar parameters only");
 }
 
+// A preset may have any name a scene file and a command line can carry, and the order the
+// plugin declared its presets in is kept (the bench's reference is the last).
+TEST(EffectDescriptor, PresetNamesAreAnyShortLowerCaseWord) {
+    Descriptor fake;
+    fake.params = {{"taps", "a quality knob", ACETATE_PARAM_INT, 4, 1, 16}};
+    fake.preset_values = {{"taps", 2}};
+    for (const char* name : {"low", "draft", "print-300dpi", "x_2"}) {
+        fake.preset.name = name;
+        auto copied = fake.copy();
+        ASSERT_TRUE(copied) << name << ": " << copied.error().message;
+        EXPECT_EQ(copied.value().preset_order, std::vector<std::string>{name});
+    }
+    const std::string too_long(33, 'a');
+    for (const std::string& name : {std::string(), std::string("Ultra"), std::string("2x"),
+                                    std::string("very fine"), too_long}) {
+        fake.preset.name = name.c_str();
+        EXPECT_EQ(refusal(fake.copy()),
+                  "fake.so: descriptor: presets[0] \"" + name +
+                      "\": a preset's name is 1 to 32 lower-case letters, digits, '-' or '_', "
+                      "starting with a letter")
+            << name;
+    }
+}
+
 TEST(EffectDescriptor, HiddenIsRecordedAndUnknownFlagsAreRefused) {
     const AcetateParamExt hidden{sizeof(AcetateParamExt), ACETATE_PARAM_HIDDEN, {}};
     Descriptor fake;

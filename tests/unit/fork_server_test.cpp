@@ -34,9 +34,11 @@ struct Ran {
 
 // Runs each command line of `commands` (arguments of the probe) as a child, two at a time,
 // through `server` (or spawned, when null), logs in `dir`; their outcomes and logs in order.
+// The jobs at the indices in `fresh` ask to be spawned afresh whatever the server.
 std::vector<Ran> run_probe(const fs::path& dir,
                            const std::vector<std::vector<std::string>>& commands,
-                           ForkServer* server, std::chrono::milliseconds timeout) {
+                           ForkServer* server, std::chrono::milliseconds timeout,
+                           const std::set<size_t>& fresh = {}) {
     std::vector<ChildJob> jobs;
     for (size_t i = 0; i < commands.size(); ++i) {
         ChildJob job;
@@ -44,6 +46,7 @@ std::vector<Ran> run_probe(const fs::path& dir,
         job.argv.insert(job.argv.end(), commands[i].begin(), commands[i].end());
         job.log = dir / ("child" + std::to_string(i) + ".log");
         job.timeout = timeout;
+        job.fresh_process = fresh.count(i) > 0;
         jobs.push_back(job);
     }
     std::vector<Ran> ran(jobs.size());
@@ -175,6 +178,17 @@ TEST(ForkServer, ChildrenStartAfterTheServersPreparation) {
                                std::chrono::seconds(20));
     EXPECT_EQ(ran[0].log, "prepared\n");
     EXPECT_EQ(ran[1].log, "prepared\n");
+}
+
+TEST(ForkServer, AJobThatAsksForAFreshProcessIsSpawned) {
+    // A case without the validation layer must not inherit the layer the server loaded.
+    auto server = start_server("work");
+    ASSERT_TRUE(server);
+    const auto ran = run_probe(test::scratch_dir(), {{"prepared"}, {"prepared"}}, server.get(),
+                               std::chrono::seconds(20), {1});
+    EXPECT_EQ(ran[0].log, "prepared\n");
+    EXPECT_EQ(ran[1].log, "not prepared\n");
+    EXPECT_EQ(ran[1].outcome.exit_code, 0) << ran[1].outcome.message;
 }
 
 TEST(ForkServer, APreparationThatFailsOrLeavesAThreadIsNotUsed) {

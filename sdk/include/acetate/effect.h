@@ -30,6 +30,32 @@
  * masks readable at build (read_mask); target formats (declare_target_info); declared reach
  * (set_reach); periodic phases computed in double precision (declare_phase); per-pass input
  * names and defines; struct_size-first forms of the target and texture descriptions.
+ *
+ * One way to do each thing. Where 1.1 added a fuller form of a 1.0 function, new code uses the
+ * fuller one and the older stays only for plugins built before it: declare_target_info, not
+ * declare_target; add_texture_format, not add_texture or add_texture_info; AcetateLightInfo
+ * (floor->light_infos), not AcetateLight. acetate/effect.hpp calls the fuller form whenever
+ * the host has it, and the older only on a host without it.
+ *
+ * Call order, threads and lifetime, as the host keeps them:
+ *  1. Load. The host opens the library (its static constructors run) only after the load
+ *     policy accepted its bytes, then calls the entry point, then reads the descriptor and
+ *     copies it. The entry point may be called more than once; it returns the same table.
+ *  2. build(). At scene load, once per instance (each floor using the effect, or once for a
+ *     global effect), in the floors' order; again when a program changes a live parameter or
+ *     preset, or reloads the scene. Never while a frame renders: a frame runs only the passes
+ *     build() declared, and none of the plugin's code. The host lends `host`, `graph` and
+ *     `floor` for the call only. One host object calls build() from one thread at a time (the
+ *     thread that loads), but a program may run several hosts, which may call the same
+ *     library's build() at once from several threads: build() keeps no unsynchronised global
+ *     state.
+ *  3. last_error(). Right after a call that failed, on the thread that made it.
+ *  4. Unload. When nothing holds the library any more (the last scene using it is gone, the
+ *     host is destroyed, or a rebuilt file replaced it on a reload) the host closes it and its
+ *     static destructors run. A library is never called after that.
+ * Every call into the plugin is watched (docs/contract.md, rule 7): it must leave the process as
+ * it found it (floating-point environment, signals, environment, descriptors, threads, working
+ * folder, umask, locale).
  */
 #ifndef ACETATE_EFFECT_H
 #define ACETATE_EFFECT_H
@@ -137,7 +163,9 @@ typedef struct AcetatePresetValue {
     float value;
 } AcetatePresetValue;
 
-/* A quality preset: "low", "medium", "high" or "ultra", mapping to parameter values. */
+/* A preset: a name (1 to 32 of a-z, 0-9, '-', '_', starting with a letter: "low", "medium",
+ * "high", "ultra", or any other, such as "draft"), mapping to parameter values. Declare
+ * presets cheapest first. */
 typedef struct AcetatePresetDesc {
     const char* name;
     const AcetatePresetValue* values;

@@ -237,15 +237,17 @@ class Graph {
   public:
     Graph(const AcetateHostApi& host, AcetateGraph* graph) : host_(host), graph_(graph) {}
     // An intermediate target, ceil(canvas / divisor); 1.1: a format other than the floor's.
+    // Through declare_target_info, the one form for new code; a 1.0 host lacks it, and then a
+    // target in the floor's format goes through declare_target, which every host has.
     void target(const std::string& name, uint32_t divisor, uint32_t format = ACETATE_FORMAT_FLOOR) {
-        if (format == ACETATE_FORMAT_FLOOR) {
+        const bool has_info = ACETATE_SDK_HAS(host_, AcetateHostApi, declare_target_info) &&
+                              host_.declare_target_info;
+        if (!has_info && format == ACETATE_FORMAT_FLOOR) {
             const AcetateTargetDesc desc{name.c_str(), divisor};
             check(host_.declare_target(graph_, &desc), "declare_target", name);
             return;
         }
-        require(ACETATE_SDK_HAS(host_, AcetateHostApi, declare_target_info) &&
-                    host_.declare_target_info,
-                "declare_target_info (target formats)");
+        require(has_info, "declare_target_info (target formats)");
         const AcetateTargetInfo desc{sizeof(AcetateTargetInfo), name.c_str(), divisor, format};
         check(host_.declare_target_info(graph_, &desc), "declare_target_info", name);
     }
@@ -297,12 +299,13 @@ class Graph {
         if (texels.size() != size_t(width) * height * channels)
             throw std::invalid_argument("texture \"" + name + "\": expected width*height*" +
                                         std::to_string(channels) + " floats");
-        if (format != ACETATE_FORMAT_FLOOR) {
-            // Only a host that has add_texture_format reads the format (an older one would
-            // read width * height * 4 floats from this shorter array).
-            require(ACETATE_SDK_HAS(host_, AcetateHostApi, add_texture_format) &&
-                        host_.add_texture_format,
-                    "add_texture_format (texture formats)");
+        // Through add_texture_format, the one form for new code. Only a host that has it reads
+        // the format (an older one would read width * height * 4 floats from a shorter array),
+        // so without it only a texture in the floor's format can go, through add_texture.
+        const bool has_format =
+            ACETATE_SDK_HAS(host_, AcetateHostApi, add_texture_format) && host_.add_texture_format;
+        if (has_format || format != ACETATE_FORMAT_FLOOR) {
+            require(has_format, "add_texture_format (texture formats)");
             const AcetateTextureInfo info{
                 sizeof(AcetateTextureInfo), name.c_str(), width, height, texels.data(), format};
             check(host_.add_texture_format(graph_, &info), "add_texture_format", name);

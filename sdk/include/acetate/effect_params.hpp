@@ -37,7 +37,10 @@ struct Param {
 };
 
 struct Preset {
-    std::string name;  // "low", "medium", "high" or "ultra"
+    // 1 to 32 of [a-z0-9_-], starting with a letter: "low", "medium", "high", "ultra", or any
+    // other ("draft", "print"). List them from the cheapest to the best: acetate-bench measures
+    // error against "ultra", or against the last one when there is no "ultra".
+    std::string name;
     std::vector<std::pair<std::string, float>> values;
 };
 
@@ -155,6 +158,49 @@ inline std::vector<Preset> quality_presets(std::initializer_list<PresetRow> rows
     for (size_t i = 0; i < 4; ++i) {
         Preset preset{kNames[i], {}};
         for (const PresetRow& row : rows) preset.values.emplace_back(row.name, row.values[i]);
+        presets.push_back(std::move(preset));
+    }
+    return presets;
+}
+
+// One row of named_presets(): a scalar parameter and its value in each of N presets, in the
+// order the presets are named.
+template <size_t N>
+struct NamedPresetRow {
+    template <size_t M>
+    NamedPresetRow(const FloatParam& p, const float (&v)[M]) : name(p.name) {
+        copy(v);
+    }
+    template <size_t M>
+    NamedPresetRow(const IntParam& p, const int (&v)[M]) : name(p.name) {
+        copy(v);
+    }
+    template <size_t M>
+    NamedPresetRow(const BoolParam& p, const bool (&v)[M]) : name(p.name) {
+        copy(v);
+    }
+    std::string_view name;
+    std::array<float, N> values{};
+
+  private:
+    template <class T, size_t M>
+    void copy(const T (&v)[M]) {
+        static_assert(M == N, "a row holds one value for each preset named");
+        for (size_t i = 0; i < N; ++i) values[i] = float(v[i]);
+    }
+};
+
+// Presets in any number and with any names, cheapest first, each setting every row's
+// parameter to its value in that preset (a row with another number of values does not compile):
+//   e.presets = named_presets({"draft", "final"}, {{kTaps, {1, 8}}, {kStrength, {0.3f, 0.6f}}});
+template <size_t N>
+std::vector<Preset> named_presets(const char* const (&names)[N],
+                                  std::initializer_list<NamedPresetRow<N>> rows) {
+    std::vector<Preset> presets;
+    for (size_t i = 0; i < N; ++i) {
+        Preset preset{names[i], {}};
+        for (const NamedPresetRow<N>& row : rows)
+            preset.values.emplace_back(row.name, row.values[i]);
         presets.push_back(std::move(preset));
     }
     return presets;

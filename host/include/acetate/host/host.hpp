@@ -160,11 +160,17 @@ struct EffectSlot {
 };
 
 // What a live change of an effect's parameters cost. Values that the effect's build() turns
-// into the same passes reach the next frame with nothing rebuilt; values that change its
-// passes (a bloom's number of levels) load the scene again, and `reloaded` says so.
+// into the same passes reach the next frame with nothing rebuilt. Values that change its
+// passes (a bloom's number of levels) rebuild that effect alone, and `rebuilt` says so: its
+// shaders compiled unless the host compiled them before, no image decoded, the other effects
+// untouched. Only a change the floor's targets were chosen for (the effect starts or stops
+// growing coverage, or declares nothing) loads the scene again: `reloaded`.
 struct ParamChange {
+    bool rebuilt = false;
     bool reloaded = false;
     double milliseconds = 0;
+    // What the change did on the device (as LoadStatistics counts it).
+    uint64_t images_loaded = 0, targets_allocated = 0, shaders_compiled = 0, pipelines_created = 0;
 };
 
 // The GPU time of one step of a frame (SceneOptions::gpu_timings).
