@@ -230,6 +230,23 @@ TEST_F(HarnessShards, ResultsThatDoNotBelongToOneRunAreOneLineNamingTheFile) {
         EXPECT_EQ(test::read_file(registry), registry_before);
     }
 
+    // A plan.json of another run (another seed) beside the results: it could only make the
+    // merge ask for more, but it is not this run's, and the merge says so.
+    const json results = json::parse(test::read_file(shared / "results" / "sizes_1x1.json"));
+    test::write_text(shared / "plan.json",
+                     json{{"format", "acetate-shard-plan/1"},
+                          {"plugin",
+                           {{"id", results["plugin"]["id"]},
+                            {"version", results["plugin"]["version"]},
+                            {"binary_sha256", results["plugin"]["binary_sha256"]}}},
+                          {"strictness", results["strictness"]},
+                          {"seed", 8},
+                          {"shards", 1},
+                          {"cases", json::array()}}
+                         .dump());
+    expect_refusal((shared / "plan.json").string() + ": the plan of another run");
+    fs::remove(shared / "plan.json");
+
     // A verdict edited in the shared folder: the runner's signature no longer holds.
     const fs::path file = shared / "results" / "sizes_1x1.json";
     const std::string signed_bytes = test::read_file(file);
