@@ -485,6 +485,16 @@ int run_harness(int argc, char** argv) {
             if (!fs::is_regular_file(bless.plugin, ec))
                 return fail(fmt::format("{}: no such plugin file", bless.plugin.string()));
             bless.plugin = fs::absolute(bless.plugin);
+            // An installation's references are its shipped plugins', written by no one after
+            // `cmake --install`: an author's go beside their plugin, named on purpose.
+            const char* references_env = std::getenv("ACETATE_REFERENCES");
+            if (!running_from_build_tree() && !(references_flag && !references_flag->empty()) &&
+                !(references_env && *references_env))
+                return fail(fmt::format(
+                    "bless: give --references DIR (or $ACETATE_REFERENCES): bless does not write "
+                    "into this installation's {}; keep your plugin's references beside its "
+                    "sources and give validate the same DIR",
+                    references_path(std::nullopt).string()));
             bless.references = references_path(references_flag);
             bless.report_directory = fs::absolute(
                 bless_report ? *bless_report : fs::path("harness-bless") / bless.plugin.stem());

@@ -10,7 +10,8 @@
 #    The installed programs default to the user's registry ($XDG_DATA_HOME/acetate, else
 #    ~/.local/share/acetate), never the build tree's, and import the installed sign-offs:
 #    installed acetate-harness validates the installed lighting plugin into that registry, and
-#    installed acetate then loads it (and refuses it with an empty registry).
+#    installed acetate then loads it (and refuses it with an empty registry). Installed bless
+#    without --references is refused in one line and writes nothing into the installation.
 #    examples/embedding-host, built against the installed package (Acetate::host), refuses the
 #    plugin with the same line as acetate, renders with it once validated, and renders the
 #    harbour floor by floor (--allow-unvalidated), no frame allocating or compiling.
@@ -143,6 +144,36 @@ if(NOT step_output MATCHES "registry ${xdg_registry} ")
   message(FATAL_ERROR "sdk_install_test: the installed harness does not use "
                       "$XDG_DATA_HOME/acetate/registry.json:\n${step_output}")
 endif()
+
+# bless from the installation, told nowhere else to write: refused in one line, and the
+# installed references are left as they were, byte for byte.
+function(digest_of_references out)
+  file(GLOB_RECURSE files "${prefix}/share/acetate/validation/references/*")
+  set(all "")
+  foreach(f IN LISTS files)
+    file(SHA256 "${f}" sha)
+    string(APPEND all "${f} ${sha}\n")
+  endforeach()
+  set(${out} "${all}" PARENT_SCOPE)
+endfunction()
+digest_of_references(references_before)
+execute_process(COMMAND ${xdg_env} --unset=ACETATE_REFERENCES "${prefix}/bin/acetate-harness"
+  bless "${prefix}/${LIBDIR}/acetate/plugins/lighting.so" --by tester@example.org
+  --report "${WORK_DIR}/bless-report"
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+digest_of_references(references_after)
+set(expected "acetate-harness: bless: give --references DIR (or $ACETATE_REFERENCES): bless does "
+             "not write into this installation's ${prefix}/share/acetate/validation/references;")
+string(JOIN "" expected ${expected})
+string(FIND "${err}" "${expected}" at)
+string(REGEX MATCHALL "\n" lines "${err}")
+list(LENGTH lines line_count)
+if(rc EQUAL 0 OR NOT at EQUAL 0 OR NOT line_count EQUAL 1
+   OR NOT references_before STREQUAL references_after OR references_before STREQUAL "")
+  message(FATAL_ERROR "sdk_install_test: installed bless without --references was not refused "
+                      "in one line, the installed references untouched (exit ${rc}):\n${out}${err}")
+endif()
+message(STATUS "ok: installed bless without --references is refused, the installation untouched")
 
 # A one-floor scene that names the installed lighting plugin, with the installed art.
 set(art "${prefix}/share/acetate/examples/harbour")
