@@ -197,6 +197,10 @@ class Compositor {
     Result<void> ensure_host_pipelines();
     void plan_geometry(const SceneDesc& scene);
     void create_timer();
+    // Resolves an instance's mask inputs to the images a frame binds: its floor's composite of
+    // each kind, or the scene-size transparent mask where the floor has none; a global effect
+    // (no floor) reads no floor's masks, only the renderer's blank texture.
+    void bind_masks(EffectInstance& instance, std::optional<uint32_t> floor) const;
     // compositor_warm_up.cpp
     Result<void> warm_pipelines();
 

@@ -139,16 +139,9 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
                                           out->options_.mask_kinds, masks.value());
     if (!resources) return resources.error();
     out->resources_ = std::move(resources.value());
-    // Each mask input now names the image a frame binds: the floor's composite of that kind, or
-    // the scene-size transparent mask where the floor has none (a global effect reads no floor's
-    // masks: the renderer's blank texture).
-    const GpuImage& blank_texture = renderer.effect_pipelines().blank_texture();
-    const GpuImage& blank_mask =
-        out->resources_->blank_mask() ? *out->resources_->blank_mask() : blank_texture;
-    for (size_t f = 0; f < out->floor_effects_.size(); ++f)
-        for (auto& effect : out->floor_effects_[f])
-            bind_pass_masks(*effect, &out->resources_->floors()[f].masks, blank_mask);
-    for (auto& effect : out->global_effects_) bind_pass_masks(*effect, nullptr, blank_texture);
+    for (uint32_t f = 0; f < out->floor_effects_.size(); ++f)
+        for (auto& effect : out->floor_effects_[f]) out->bind_masks(*effect, f);
+    for (auto& effect : out->global_effects_) out->bind_masks(*effect, std::nullopt);
     ACETATE_TRY(out->targets_.allocate(context, out->width_, out->height_, options.format,
                                        out->target_needs(), scene.file.string() + ": canvas"));
     ACETATE_TRY(out->ensure_host_pipelines());
@@ -161,6 +154,14 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
                         used.targets_allocated,    used.shaders_compiled,
                         used.pipelines_created,    out->resources_->tile_texel_violations()};
     return out;
+}
+
+void Compositor::bind_masks(EffectInstance& instance, std::optional<uint32_t> floor) const {
+    const GpuImage& blank_texture = renderer_.effect_pipelines().blank_texture();
+    if (!floor) return bind_pass_masks(instance, nullptr, blank_texture);
+    const GpuImage* blank_mask = resources_->blank_mask();
+    bind_pass_masks(instance, &resources_->floors()[*floor].masks,
+                    blank_mask ? *blank_mask : blank_texture);
 }
 
 FrameTargetNeeds Compositor::target_needs() const {

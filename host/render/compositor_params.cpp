@@ -89,12 +89,7 @@ Result<Compositor::EffectChange> Compositor::set_effect_ref(std::optional<uint32
                                    std::move(prepared.value()));
         if (!created) return created.error();
         created.value()->scene_index = index;
-        const GpuImage& blank_texture = renderer_.effect_pipelines().blank_texture();
-        if (floor)
-            bind_pass_masks(*created.value(), &resources_->floors()[*floor].masks,
-                            resources_->blank_mask() ? *resources_->blank_mask() : blank_texture);
-        else
-            bind_pass_masks(*created.value(), nullptr, blank_texture);
+        bind_masks(*created.value(), floor);
         // The frames before used the old instance's buffers: they are finished (every frame
         // is waited for), so it can go now.
         instance = std::move(created.value());
