@@ -216,6 +216,15 @@ void plan_contract(const PlanContext& context, Planner& p) {
         p.add(s);
     }
     if (floor_effect) {
+        CaseSpec s = p.contract("relations/camera-region",
+                                "two floors, transparent along every edge, against the same "
+                                "floors through a camera whose region starts left of and above "
+                                "the canvas (ABI 1.2)",
+                                128, 96, Pattern::Standard, 2);
+        s.relation = Relation::CameraRegion;
+        p.add(s);
+    }
+    if (floor_effect) {
         CaseSpec s = p.contract("relations/canvas-size",
                                 "two floors, transparent along the right and bottom edges, "
                                 "against the same floors on a larger canvas",

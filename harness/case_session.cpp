@@ -111,7 +111,10 @@ Result<std::unique_ptr<Compositor>> load(const CaseContext& c, Session& s, const
     if (how.format) options.format = *how.format;
     options.checked_builtins = how.checked_builtins;
     options.ignore_declared_reach = how.ignore_declared_reach;
-    return Compositor::load(*s.renderer, scene, options);
+    auto comp = Compositor::load(*s.renderer, scene, options);
+    if (!comp || !how.camera) return comp;
+    ACETATE_TRY(comp.value()->set_view_transform(*how.camera));
+    return comp;
 }
 
 }  // namespace
@@ -140,14 +143,19 @@ std::vector<SceneEffect> with_neighbours(const CaseContext& c, SceneEffect plugi
 }
 
 // The floor transparent (pixels and masks) within `band` pixels of the canvas's right and
-// bottom edges: what lies past them then reads the same on a larger canvas (canvas-size).
-void clear_canvas_edges(FloorInput& floor, uint32_t width, uint32_t height, uint32_t band) {
+// bottom edges (and its left and top ones with `all_sides`): what lies past them then reads the
+// same on a larger canvas (canvas-size), or through a camera that shows more (camera-region).
+void clear_canvas_edges(FloorInput& floor, uint32_t width, uint32_t height, uint32_t band,
+                        bool all_sides = false) {
     if (!floor.tiled) return;
     auto clear = [&](ImageRGBA& image) {
         for (uint32_t y = 0; y < image.height; ++y)
-            for (uint32_t x = 0; x < image.width; ++x)
-                if (floor.x + x + band >= width || floor.y + y + band >= height)
+            for (uint32_t x = 0; x < image.width; ++x) {
+                const int64_t sx = int64_t(floor.x) + x, sy = int64_t(floor.y) + y;
+                if (sx + band >= width || sy + band >= height ||
+                    (all_sides && (sx < int64_t(band) || sy < int64_t(band))))
                     std::fill_n(image.at(x, y), 4, 0.0f);
+            }
     };
     clear(floor.image);
     for (auto& [kind, mask] : floor.masks) clear(mask);
@@ -165,8 +173,9 @@ SceneLayout case_layout(const CaseContext& c, json params) {
     for (uint32_t f = 0; f < s.floors; ++f) {
         layout.floors.push_back(
             make_floor_input(choice, s.width, s.height, f, s.floors, s.seed, c.plugin.masks));
-        if (s.relation == Relation::CanvasSize)
-            clear_canvas_edges(layout.floors.back(), s.width, s.height, kCanvasEdgeBand);
+        if (s.relation == Relation::CanvasSize || s.relation == Relation::CameraRegion)
+            clear_canvas_edges(layout.floors.back(), s.width, s.height, kCanvasEdgeBand,
+                               s.relation == Relation::CameraRegion);
         if (!c.plugin.is_global() && (s.plugin_floor < 0 || uint32_t(s.plugin_floor) == f))
             layout.floor_effects[f] = with_neighbours(c, under_test(c, params));
     }

@@ -87,9 +87,10 @@ uint64_t resident_bytes();
 
 // How a scene is loaded besides the case's poison.
 struct LoadOptions {
-    bool checked_builtins = false;       // GLSL with checked min/max/clamp/smoothstep (Undefined)
-    bool ignore_declared_reach = false;  // shade as if no reach was declared (the reach check)
-    std::optional<VkFormat> format;      // instead of the case's (the format-agreement relation)
+    bool checked_builtins = false;        // GLSL with checked min/max/clamp/smoothstep (Undefined)
+    bool ignore_declared_reach = false;   // shade as if no reach was declared (the reach check)
+    std::optional<VkFormat> format;       // instead of the case's (the format-agreement relation)
+    std::optional<ViewTransform> camera;  // seen through it (the camera-region relation)
 };
 
 // Writes the layout's scene and loads it, with the case's poison. A scene the host refuses

@@ -29,7 +29,8 @@ constexpr const char* kFloorVariantNames[] = {"standard", "long-names", "unicode
 static_assert(std::size(kFloorVariantNames) == kFloorVariantCount);
 constexpr const char* kPoisonNames[] = {"none", "nan", "large", "plain"};
 constexpr const char* kFormatNames[] = {"rgba16f", "rgba32f"};
-constexpr const char* kRelationNames[] = {"none", "canvas-size", "format-agreement"};
+constexpr const char* kRelationNames[] = {"none", "canvas-size", "format-agreement",
+                                          "camera-region"};
 
 template <class Enum, size_t N>
 std::optional<Enum> parse_enum(const char* const (&names)[N], const std::string& name) {

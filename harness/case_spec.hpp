@@ -113,8 +113,9 @@ enum class TargetFormat { Rgba16f, Rgba32f };
 const char* to_string(TargetFormat format);
 // A relation that needs no oracle (relation_checks.cpp), checked in a contract case besides the
 // contract: the plugin's floors on a canvas grown to the right and below are unchanged; the
-// same scene in rgba16f and rgba32f agrees within half precision.
-enum class Relation { None, CanvasSize, FormatAgreement };
+// same scene in rgba16f and rgba32f agrees within half precision; the same scene seen through
+// a camera whose region is shifted (ABI 1.2) shows the same pixels where the canvas lands.
+enum class Relation { None, CanvasSize, FormatAgreement, CameraRegion };
 const char* to_string(Relation relation);
 
 // Another plugin an integration case runs beside the one under test.

@@ -36,6 +36,12 @@ constexpr std::array kChecks = {
               "a channel of the plugin's floors more than one half-float unit from the same "
               "floors on a canvas grown by 61x43 pixels to the right and below (the floors are "
               "transparent within 8 pixels of those edges)"},
+    CheckInfo{"camera-region", "9",
+              "`relations/camera-region` (floor effects built against ABI 1.2)", true, true,
+              "a channel of the plugin's output more than one half-float unit from the same "
+              "scene seen through a camera whose region starts 13 and 7 pixels left of and "
+              "above the canvas, where the canvas lands (the floors are transparent within 8 "
+              "pixels of every edge)"},
     CheckInfo{"format-agreement", "8", "`formats/rgba32f`", true, true,
               "a channel in rgba32f more than 8 half-float units (at the larger of the value and "
               "the input's largest) from the same scene in rgba16f"},

@@ -64,6 +64,9 @@ const std::vector<InputDimension>& input_dimensions() {
          "the effects before and after the plugin on its floor (or among the global effects): "
          "none, or the harness's coverage-expanding spread"},
         {"target format", "the format of the floors' targets and tiles: rgba16f or rgba32f"},
+        {"camera",
+         "what the host renders through (ABI 1.2): no camera, or a region around the canvas at "
+         "scale 1 (beside the case's own render)"},
     };
     return dimensions;
 }
@@ -91,6 +94,9 @@ std::map<std::string, std::string> describe_inputs(const CaseSpec& s, const Plug
     for (const std::string& id : s.effects_after) neighbours += id + " after; ";
     set("neighbours", neighbours.empty() ? "none" : neighbours.substr(0, neighbours.size() - 2));
     set("target format", to_string(s.format));
+    set("camera", s.relation == Relation::CameraRegion
+                      ? "none, and a region starting 13 and 7 pixels left of and above the canvas"
+                      : "none");
     return in;
 }
 

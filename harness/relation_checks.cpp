@@ -117,6 +117,46 @@ Result<CheckResult> format_agreement(const CaseContext& c, Session& s, CaseWrite
     return relation.finish();
 }
 
+Result<CheckResult> camera_region(const CaseContext& c, Session& s, CaseWriter& w,
+                                  const json& params, const std::string& name,
+                                  const std::vector<FloorImages>& floors,
+                                  std::map<int64_t, ImageRGBA>& heat) {
+    const uint32_t dx = kCameraShift[0], dy = kCameraShift[1];
+    CheckAccumulator relation(
+        "camera-region",
+        fmt::format("the same floors through a camera whose region starts {} and {} pixels left "
+                    "of and above the canvas give the same pixels where the canvas lands "
+                    "(within one half-float unit)",
+                    dx, dy));
+    // A plugin built before the camera renders only without one: hosts refuse any other.
+    if (c.plugin.abi == "1.0" || c.plugin.abi == "1.1") {
+        CheckResult skipped;
+        skipped.check = "camera-region";
+        skipped.verdict = Verdict::Skip;
+        skipped.message =
+            fmt::format("not judged: built against ABI {}, which has no camera (hosts refuse one)",
+                        c.plugin.abi);
+        return skipped;
+    }
+    LoadOptions how;
+    how.camera =
+        ViewTransform{-double(dx), -double(dy), 1, c.spec.width + 2 * dx, c.spec.height + 2 * dy};
+    auto seen = outputs_in(c, s, w, case_layout(c, params), name + ".camera", floors, how);
+    if (!seen) return seen.error();
+    if (!*seen) return relation.finish();  // the load failure is recorded already
+    for (size_t i = 0; i < floors.size(); ++i) {
+        // Why one unit: as for canvas-size, a sampling position normalised by the output's size
+        // rounds differently for another size.
+        const ImageRGBA& g = (**seen)[i];
+        ImageRGBA cropped(c.spec.width, c.spec.height);
+        for (uint32_t y = 0; y < c.spec.height; ++y)
+            std::copy_n(g.at(dx, y + dy), 4 * c.spec.width, cropped.at(0, y));
+        compare_within(floors[i], cropped, half_ulp, "through the camera", relation);
+    }
+    heat = relation.heat_maps();
+    return relation.finish();
+}
+
 // Whether a second load of the case's own scene gives the plugin's outputs bit for bit: a
 // relation compares loads, so it means nothing for a plugin whose loads differ anyway (which
 // `determinism` reports).
@@ -154,6 +194,8 @@ Result<CheckResult> check_relation(const CaseContext& c, Session& s, CaseWriter&
             return canvas_size(c, s, w, params, name, floors, heat);
         case Relation::FormatAgreement:
             return format_agreement(c, s, w, params, name, floors, heat);
+        case Relation::CameraRegion:
+            return camera_region(c, s, w, params, name, floors, heat);
         case Relation::None:
             break;
     }

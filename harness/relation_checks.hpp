@@ -10,6 +10,11 @@
 // - format-agreement: the scene in rgba32f and in rgba16f agree within half precision; an
 //   effect that keeps data a 16-bit float cannot hold (pixel positions past 2048) in a target
 //   of the floor's format fails.
+// - camera-region (ABI 1.2): the same scene through a camera whose region starts left of and
+//   above the canvas, so the canvas lands kCameraShift pixels into the output, gives the same
+//   pixels there. The floors are transparent within kCanvasEdgeBand pixels of every edge. An
+//   effect that takes gl_FragCoord for scene pixels (its lights, its pattern shifted by the
+//   camera) or the output's size for the canvas's fails.
 
 #include <map>
 #include <nlohmann/json.hpp>
@@ -24,6 +29,9 @@ namespace acetate::harness {
 // (case_layout), and the canvas grows by this much for canvas-size.
 inline constexpr uint32_t kCanvasEdgeBand = 8;
 inline constexpr uint32_t kCanvasGrowth[2] = {61, 43};
+// Where the canvas lands in the camera-region relation's output (which is this much larger on
+// every side): odd, and different on the two axes, so no pattern of 2 or 4 pixels hides a shift.
+inline constexpr uint32_t kCameraShift[2] = {13, 7};
 // How far rgba32f and rgba16f may drift apart, in units in the last place of a half float at
 // the larger of the value and the input's largest value. The output's own rounding is half a
 // unit; each pass through a target of the floor's format, and each blend onto one, rounds

@@ -148,7 +148,8 @@ int run_check_shaders(const CheckShadersCommand& command) {
             return 1;
         }
         FloorFacts facts;
-        describe_floor(scene, global ? -1 : 0, d, params.value(), facts);
+        describe_floor(scene, global ? -1 : 0, d, params.value(),
+                       ViewTransform::whole(scene.width, scene.height), facts);
         GraphContext graph_context;
         graph_context.masks = global ? nullptr : &masks;
         graph_context.canvas_width = scene.width;

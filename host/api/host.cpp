@@ -199,7 +199,7 @@ std::vector<PluginReload> Host::reload_plugins() {
                 // The scene as it renders now, live parameters included.
                 SceneDesc desc = loaded->compositor->scene();
                 if (!scene_uses(desc, outcome.id)) continue;
-                auto compositor = Compositor::load(*state_->renderer, desc, loaded->options);
+                auto compositor = load_again(*loaded, desc);
                 if (!compositor) {
                     reload.refused +=
                         (reload.refused.empty() ? "" : "; ") + compositor.error().message;

@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,8 +42,14 @@ struct Scene::Loaded {
     LoadStatistics load;
     uint32_t active_floor = 0;
     double time = 0;
+    std::optional<Camera> camera;  // as set_camera was given it; none: the whole canvas
     bool rendered = false;
 };
+
+// The scene `desc` loaded again for `loaded` (a changed plugin, a live change the plan depends
+// on): with its load options and the camera its current compositor renders through.
+acetate::Result<std::unique_ptr<Compositor>> load_again(const Scene::Loaded& loaded,
+                                                        const SceneDesc& desc);
 
 inline Error error_of(const acetate::Error& e) {
     // The public codes are the internal ones, in the same order (checked in host.cpp).

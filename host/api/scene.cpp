@@ -34,6 +34,19 @@ std::vector<ImageInfo> infos_of(const std::vector<TargetInfo>& targets) {
     return out;
 }
 
+// What a live change (ParamChange, CameraChange) did on the device since `before`, and its time.
+template <class Change>
+void record_cost(Change& change, VulkanContext& context, const ResourceCounters& before,
+                 std::chrono::steady_clock::time_point start) {
+    const ResourceCounters used = context.counters() - before;
+    change.images_loaded = used.images_loaded;
+    change.targets_allocated = used.targets_allocated;
+    change.shaders_compiled = used.shaders_compiled;
+    change.pipelines_created = used.pipelines_created;
+    change.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 // Gives one effect of the scene the entry `edit` makes of its current one: in place when its
 // build() declares the same graph, by building that effect again when it declares another,
 // and by loading the scene again only when the floor's plan depends on the change (the old
@@ -53,24 +66,80 @@ Result<ParamChange> change_effect(Scene::Loaded& loaded, const EffectSlot& slot,
     if (done.value() == Compositor::EffectChange::NeedsLoad) {
         SceneDesc desc = loaded.compositor->scene();
         (slot.floor ? desc.floors[*slot.floor].effects : desc.global_effects)[slot.index] = ref;
-        auto compositor = Compositor::load(*loaded.host->renderer, desc, loaded.options);
+        auto compositor = load_again(loaded, desc);
         if (!compositor) return error_of(compositor.error());
         loaded.compositor = std::move(compositor.value());
         loaded.desc = std::move(desc);
         loaded.rendered = false;  // read_frame() wants a frame of this scene
         change.reloaded = true;
     }
-    const ResourceCounters used = loaded.host->context->counters() - before;
-    change.images_loaded = used.images_loaded;
-    change.targets_allocated = used.targets_allocated;
-    change.shaders_compiled = used.shaders_compiled;
-    change.pipelines_created = used.pipelines_created;
-    change.milliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    record_cost(change, *loaded.host->context, before, start);
     return change;
 }
 
+// The view a camera asks for, each number read and checked here: the origin within 2^24
+// scene pixels (whole numbers up to there are exact in a shader's float), a region of positive
+// size, a scale from 1/64 to 64, an output of round(width * scale) x round(height * scale)
+// pixels, at least 1 and at most 65536 per side (the device may allow fewer: the compositor
+// checks its limit).
+Result<ViewTransform> view_of(const Camera& camera, const std::string& scene) {
+    constexpr double kMaxOrigin = 16777216.0, kMinScale = 1.0 / 64, kMaxScale = 64;
+    auto refuse = [&](const std::string& what) {
+        return Error{fmt::format("{}: camera: {}", scene, what)};
+    };
+    if (!std::isfinite(camera.x) || !std::isfinite(camera.y) || std::abs(camera.x) > kMaxOrigin ||
+        std::abs(camera.y) > kMaxOrigin)
+        return refuse(fmt::format("origin ({}, {}): expected finite numbers within +-16777216",
+                                  camera.x, camera.y));
+    if (!std::isfinite(camera.scale) || camera.scale < kMinScale || camera.scale > kMaxScale)
+        return refuse(fmt::format("scale {}: expected a number from 1/64 to 64", camera.scale));
+    if (!std::isfinite(camera.width) || !std::isfinite(camera.height) || camera.width <= 0 ||
+        camera.height <= 0)
+        return refuse(fmt::format("size {} x {}: expected finite numbers above 0", camera.width,
+                                  camera.height));
+    const double w = std::round(camera.width * camera.scale);
+    const double h = std::round(camera.height * camera.scale);
+    if (w < 1 || h < 1 || w > 65536 || h > 65536)
+        return refuse(
+            fmt::format("an output of {} x {} pixels (size times scale): expected 1 "
+                        "to 65536 per side",
+                        w, h));
+    return ViewTransform{camera.x, camera.y, camera.scale, uint32_t(w), uint32_t(h)};
+}
+
 }  // namespace
+
+acetate::Result<std::unique_ptr<Compositor>> load_again(const Scene::Loaded& loaded,
+                                                        const SceneDesc& desc) {
+    auto compositor = Compositor::load(*loaded.host->renderer, desc, loaded.options);
+    if (!compositor) return compositor.error();
+    ACETATE_TRY(compositor.value()->set_view_transform(loaded.compositor->view_transform()));
+    return compositor;
+}
+
+Result<CameraChange> Scene::set_camera(const Camera& camera) {
+    const std::lock_guard lock(loaded_->host->calls);
+    auto view = view_of(camera, loaded_->desc.file.string());
+    if (!view) return view.error();
+    const auto start = std::chrono::steady_clock::now();
+    const ResourceCounters before = loaded_->host->context->counters();
+    const ViewTransform old = loaded_->compositor->view_transform();
+    if (auto done = loaded_->compositor->set_view_transform(view.value()); !done)
+        return error_of(done.error());
+    loaded_->camera = camera;
+    CameraChange change;
+    change.resized = old.width != view->width || old.height != view->height;
+    change.rebuilt = change.resized || old.scale != view->scale;
+    if (view.value() != old) loaded_->rendered = false;  // read_frame() wants a frame of it
+    record_cost(change, *loaded_->host->context, before, start);
+    return change;
+}
+
+Camera Scene::camera() const {
+    const std::lock_guard lock(loaded_->host->calls);
+    if (loaded_->camera) return *loaded_->camera;
+    return Camera{0, 0, double(loaded_->desc.width), double(loaded_->desc.height), 1};
+}
 
 Result<ParamChange> Scene::set_param(const EffectSlot& effect, const std::string& name,
                                      const std::vector<float>& value) {

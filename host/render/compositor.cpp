@@ -98,7 +98,11 @@ std::vector<TargetInfo> Compositor::targets_held() const {
 
 std::vector<TargetInfo> Compositor::images_held() const {
     std::vector<TargetInfo> out = targets_held();
-    for (const GpuImage* image : resources_->images())
+    std::vector<const GpuImage*> images = resources_->images();
+    for (const auto& floor : view_masks_)
+        for (const auto& [kind, image] : floor) images.push_back(&image);
+    if (view_blank_mask_) images.push_back(&*view_blank_mask_);
+    for (const GpuImage* image : images)
         out.push_back({image->name(), format_name(image->format()), image->width(), image->height(),
                        image->bytes()});
     return out;

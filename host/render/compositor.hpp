@@ -9,16 +9,18 @@
 // planner's geometry), compositor_warm_up.cpp (every pipeline drawn once at load),
 // floor_recording.cpp (a frame's commands: floors, composites, global effects, the output),
 // compositor.cpp (render(), read-backs and what it holds), compositor_params.cpp (live
-// parameters). Its targets are a FrameTargets, its
-// output views are in output_view.hpp, the Vulkan commands it records in
+// parameters), compositor_camera.cpp (the camera: the region and scale a frame shows). Its targets
+// are a FrameTargets, its output views are in output_view.hpp, the Vulkan commands it records in
 // vulkan/render_commands.hpp.
 
 #include <array>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
 #include <string>
 
+#include "core/view_transform.hpp"
 #include "render/effect_runtime.hpp"
 #include "render/frame_plan.hpp"
 #include "render/frame_stats.hpp"
@@ -159,8 +161,18 @@ class Compositor {
     const SceneDesc& scene() const { return scene_; }
     const std::vector<LeftOutEntry>& left_out() const { return left_out_; }
 
+    // The camera (compositor_camera.cpp): later frames show `view`, a region of the scene at a
+    // scale, in an output of view.width x view.height. A move at the same scale and size plans
+    // the floors again and resamples the floors' masks (no allocation, no build()); another
+    // scale runs every effect's build() again (an effect whose passes change is rebuilt, its
+    // pipelines from the pool); another size also allocates the targets again. Refused, with
+    // nothing changed, for a plugin built before ABI 1.2 (unless `view` is the whole canvas at
+    // scale 1), an output over the device limit, or a failing build().
+    Result<void> set_view_transform(const ViewTransform& view);
+    const ViewTransform& view_transform() const { return view_; }
+
     uint32_t floor_count() const { return uint32_t(resources_->floors().size()); }
-    uint32_t width() const { return width_; }
+    uint32_t width() const { return width_; }  // the output: the camera's, else the canvas
     uint32_t height() const { return height_; }
     const LoadStats& load_stats() const { return load_stats_; }
     // Whether some floor effect declared a reach (set_reach) that limits what is shaded.
@@ -203,6 +215,19 @@ class Compositor {
     void bind_masks(EffectInstance& instance, std::optional<uint32_t> floor) const;
     // compositor_warm_up.cpp
     Result<void> warm_pipelines();
+    // compositor_camera.cpp
+    // Every effect instance built again for view_ (new_targets: into those targets, all of
+    // them; otherwise only those whose passes changed), swapped in only when all succeed.
+    Result<void> rebuild_for_view(FrameTargets* new_targets);
+    // The floors' masks in render pixels for view_ (allocated at its size when needed, then
+    // drawn from the scene-space ones), and every instance bound to them; without a camera the
+    // scene-space masks themselves.
+    Result<void> view_masks();
+    // What the effects of a frame are given besides their images: the time, the output and
+    // canvas sizes, the camera, the timer.
+    EffectIo effect_io(double time) const;
+    // The sampler a tile is drawn with under the current camera.
+    VkSampler tile_sampler(const LoadedTile& tile) const;
 
     // A frame's commands (floor_recording.cpp).
     void record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats, double time);
@@ -234,7 +259,8 @@ class Compositor {
     VulkanContext& context_;
     CompositorOptions options_;
     SceneDesc scene_;
-    uint32_t width_ = 0, height_ = 0;
+    uint32_t width_ = 0, height_ = 0;  // the output (view_.width, view_.height)
+    ViewTransform view_;               // the camera; ViewTransform::whole without one
     std::unique_ptr<SceneResources> resources_;
     HostPipelines* pipelines_ = nullptr;  // owned by the renderer, shared by scenes
     std::vector<std::vector<std::unique_ptr<EffectInstance>>> floor_effects_;  // per floor
@@ -242,7 +268,9 @@ class Compositor {
     FrameTargets targets_;
     GpuImage* final_accumulation_ = nullptr;  // what the output read last frame
     GpuImage* viewed_floor_ = nullptr;        // the active floor's content, for views
-    std::vector<FloorGeometry> geometry_;     // what the planner works from (fixed at load)
+    std::vector<FloorGeometry> geometry_;     // what the planner works from, in render pixels
+    // Per floor, per tile: the render pixels it shades under the camera.
+    std::vector<std::vector<PixelRect>> tile_pixels_;
     std::vector<PixelRect> expansion_areas_;  // per floor; empty unless it has expanding effects
     // Per floor with effects that do not expand: the union of its tiles' pixels as disjoint
     // rects, where its "result" passes and its composite draw (one draw each), so tiles far
@@ -259,6 +287,10 @@ class Compositor {
     // from the files on the first such call that needs them, then kept (a load keeps none).
     std::optional<SceneMasks> live_masks_;
     std::vector<LeftOutEntry> left_out_;
+    // The floors' masks in render pixels while a camera is set (kind -> image, per floor), and
+    // a transparent one for floors without a kind; empty without a camera.
+    std::vector<std::map<std::string, GpuImage>> view_masks_;
+    std::optional<GpuImage> view_blank_mask_;
 };
 
 }  // namespace acetate

@@ -30,6 +30,7 @@ Result<SceneMasks> Compositor::create_effects(const SceneDesc& scene) {
     setup.format = options_.format;
     setup.targets = &targets_.effect_targets();
     setup.checked_builtins = options_.checked_builtins;
+    setup.view = view_;
     floor_effects_.resize(scene.floors.size());
     for (size_t f = 0; f < scene.floors.size(); ++f) {
         setup.masks = &masks->floors[f];
@@ -115,6 +116,7 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
     out->scene_ = scene;
     out->width_ = scene.width;
     out->height_ = scene.height;
+    out->view_ = ViewTransform::whole(scene.width, scene.height);
     out->pipelines_ = &renderer.host_pipelines();
     auto masks = out->create_effects(scene);
     if (!masks) return masks.error();
@@ -159,6 +161,8 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
 void Compositor::bind_masks(EffectInstance& instance, std::optional<uint32_t> floor) const {
     const GpuImage& blank_texture = renderer_.effect_pipelines().blank_texture();
     if (!floor) return bind_pass_masks(instance, nullptr, blank_texture);
+    if (!view_masks_.empty())  // a camera: the masks in render pixels (view_masks())
+        return bind_pass_masks(instance, &view_masks_[*floor], *view_blank_mask_);
     const GpuImage* blank_mask = resources_->blank_mask();
     bind_pass_masks(instance, &resources_->floors()[*floor].masks,
                     blank_mask ? *blank_mask : blank_texture);
@@ -193,31 +197,43 @@ Result<void> Compositor::ensure_host_pipelines() {
     return {};
 }
 
-// The planner's view of each floor, fixed at load. A floor with a coverage-expanding effect may
-// draw past its tiles (a glow): for planning it covers its tiles grown by the effects' declared
-// reach, or the whole canvas when one declared none.
+// The planner's view of each floor in render pixels, made at load and again when the camera
+// moves. A floor with a coverage-expanding effect may draw past its tiles (a glow): for
+// planning it covers its tiles grown by the effects' declared reach, or the whole output when
+// one declared none.
 void Compositor::plan_geometry(const SceneDesc& scene) {
-    geometry_ = resources_->geometry();
+    geometry_.clear();
+    tile_pixels_.clear();
     expansion_areas_.clear();  // planned again when a live change moves an effect's reach
     shading_rects_.clear();
-    const PixelRect canvas{0, 0, int64_t(scene.width), int64_t(scene.height)};
     for (uint32_t f = 0; f < floor_count(); ++f) {
+        const LoadedFloor& loaded = resources_->floors()[f];
+        FloorGeometry geometry;
+        geometry.needs_target = loaded.geometry.needs_target;
+        std::vector<PixelRect> tiles;
+        for (const LoadedTile& tile : loaded.tiles) {
+            const PixelRect pixels =
+                view_.covered(tile.rect.x, tile.rect.y, tile.rect.width, tile.rect.height);
+            geometry.coverage = bounding_union(geometry.coverage, pixels);
+            if (tile.opaque && !pixels.empty()) geometry.opaque.push_back(pixels);
+            tiles.push_back(pixels);
+        }
         const bool expanding = expands(f);
-        expansion_areas_.push_back(expanding ? expansion_area(scene, f) : PixelRect{});
-        if (expanding) geometry_[f].coverage = expansion_areas_.back();
+        expansion_areas_.push_back(expanding ? view_.touched(expansion_area(scene, f))
+                                             : PixelRect{});
+        if (expanding) geometry.coverage = expansion_areas_.back();
         // A floor whose tiles lie far apart (houses, trees) would shade their whole bounding
         // box in every effect pass; its exact union as a few rects, one draw each, does not.
         // Past a handful of rects the draws cost more than the pixels they save.
         constexpr size_t kMaxShadingRects = 16;
         std::vector<PixelRect> rects;
         if (!floor_effects_[f].empty() && !expanding) {
-            std::vector<PixelRect> tiles;
-            for (const LoadedTile& tile : resources_->floors()[f].tiles)
-                tiles.push_back(intersect(tile.pixels, canvas));
             rects = disjoint_union(tiles);
             if (rects.size() > kMaxShadingRects) rects.clear();
         }
         shading_rects_.push_back(std::move(rects));
+        geometry_.push_back(std::move(geometry));
+        tile_pixels_.push_back(std::move(tiles));
     }
 }
 

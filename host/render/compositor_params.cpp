@@ -54,6 +54,7 @@ Result<Compositor::EffectChange> Compositor::set_effect_ref(std::optional<uint32
     InstanceSetup setup;
     setup.format = options_.format;
     setup.checked_builtins = options_.checked_builtins;
+    setup.view = view_;
     auto plugin = renderer_.plugins().load(updated.plugin);  // loaded already: a lookup
     if (!plugin) return plugin.error();
     if (floor && !plugin.value()->descriptor.masks.empty()) {

@@ -21,7 +21,7 @@ Result<void> Compositor::warm_pipelines() {
     std::vector<std::pair<const GpuImage*, VkSampler>> textures;
     for (const LoadedFloor& f : resources_->floors())
         for (const LoadedTile& t : f.tiles)
-            if (const std::pair used{t.texture, pipelines_->tile_sampler(t.one_to_one)};
+            if (const std::pair used{t.texture, tile_sampler(t)};
                 std::find(textures.begin(), textures.end(), used) == textures.end())
                 textures.push_back(used);
     const PixelRect pixel{0, 0, 1, 1};
@@ -91,12 +91,11 @@ Result<void> Compositor::warm_pipelines() {
         draw_one_pixel(cmd, HostPass::Output, output, false, accumulation.view());
         // Every effect pass too, reading the (cleared) output and writing one pixel.
         auto warm_effect = [&](EffectInstance& effect, GpuImage& result) {
-            EffectIo io;
+            EffectIo io = effect_io(0);
             io.previous = &output;
             io.result = &result;
             io.result_scissor = pixel;
-            io.canvas_width = width_;
-            io.canvas_height = height_;
+            io.timer = nullptr;
             io.warm_up = true;
             FloorFrameReport ignored;
             record_effect(cmd, renderer_, effect, io, ignored);

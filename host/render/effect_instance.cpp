@@ -64,6 +64,10 @@ PixelRect floor_coverage_bounds(const SceneDesc& scene, size_t floor) {
 
 namespace {
 
+ViewTransform view_of(const InstanceSetup& setup, const SceneDesc& scene) {
+    return setup.view.width ? setup.view : ViewTransform::whole(scene.width, scene.height);
+}
+
 // The effect entry an error of its instance concerns (Error::file, field, plugin, floor), where
 // the error does not say more precisely already.
 Error concerning(Error error, const SceneDesc& scene, const EffectRef& ref, int64_t floor) {
@@ -104,7 +108,7 @@ Result<PreparedInstance> prepare(Renderer& renderer, const SceneDesc& scene, con
         "{}.{}", floor < 0 ? std::string("global") : fmt::format("floor{}", floor), d.id);
 
     FloorFacts facts;
-    describe_floor(scene, floor, d, instance.params, facts);
+    describe_floor(scene, floor, d, instance.params, view_of(setup, scene), facts);
     GraphContext graph_context;
     graph_context.masks = setup.masks;
     graph_context.canvas_width = scene.width;
@@ -147,7 +151,8 @@ Result<std::unique_ptr<EffectInstance>> create(Renderer& renderer, const SceneDe
     std::map<std::string, VkFormat> output_formats{{"result", setup.format}};
     for (const GraphTarget& t : graph->targets) {
         const VkFormat format = target_vk_format(t.format, setup.format);
-        auto image = setup.targets->get(context, d.id, t, scene.width, scene.height, format);
+        const ViewTransform view = view_of(setup, scene);
+        auto image = setup.targets->get(context, d.id, t, view.width, view.height, format);
         if (!image) return image.error();
         instance->targets[t.name] = image.value();
         output_formats[t.name] = format;
@@ -170,11 +175,6 @@ Result<std::unique_ptr<EffectInstance>> create(Renderer& renderer, const SceneDe
         runtime.blend = pass.blend;
         runtime.instance_count = pass.instance_count;
         runtime.instance_data_offset = pass.instance_data_offset;
-        for (uint32_t i = 0; i < pass.instance_count; ++i) {
-            const float* r = &graph->floor_data[pass.instance_data_offset + 4 * i];
-            runtime.instanced_pixels +=
-                pixels_covered(r[0], r[1], r[2], r[3], scene.width, scene.height).area();
-        }
         std::shared_ptr<const std::vector<uint32_t>> spirv;
         runtime.from_glsl = !pass.glsl.empty();
         if (runtime.from_glsl) {
@@ -217,6 +217,7 @@ Result<std::unique_ptr<EffectInstance>> create(Renderer& renderer, const SceneDe
         instance->floor_data = std::move(buffer.value());
         instance->has_floor_data = true;
     }
+    count_instanced_pixels(*instance, view_of(setup, scene));
     if (!prepared->lights.empty()) {
         std::vector<EffectLightGpu> lights;
         for (const AcetateLightInfo& l : prepared->lights)

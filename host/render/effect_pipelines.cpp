@@ -114,6 +114,18 @@ std::string effect_glsl_preamble(const EffectDescriptor& effect, const GraphPass
     out +=
         "    vec4 acetate_clock;    // whole seconds, fraction of the second (double on the CPU)\n";
     out += fmt::format("    vec4 acetate_phases[{}];\n}};\n", std::max<size_t>(1, phases.size()));
+    // ABI 1.2: the camera (EffectViewPushConstants) and the two conversions a pass needs.
+    out +=
+        "layout(push_constant) uniform AcetateView {\n"
+        "    vec4 acetate_view;          // origin x, y (scene pixels), scale, 1/scale\n"
+        "    vec4 acetate_scene_canvas;  // the scene's canvas: width, height, 1/width, 1/height\n"
+        "};\n"
+        "#define acetate_view_origin (acetate_view.xy)\n"
+        "#define acetate_view_scale (acetate_view.z)\n"
+        "vec2 acetate_scene_position(vec2 render_pixel) {\n"
+        "    return acetate_view.xy + render_pixel * acetate_view.w;\n}\n"
+        "vec2 acetate_render_position(vec2 scene_position) {\n"
+        "    return (scene_position - acetate_view.xy) * acetate_view.z;\n}\n";
     out +=
         "#define acetate_time (acetate_misc.x)\n#define acetate_floor (int(acetate_misc.y))\n"
         "#define acetate_time_whole (acetate_clock.x)\n"
@@ -200,6 +212,9 @@ Result<std::unique_ptr<EffectPipelines>> EffectPipelines::create(VulkanContext& 
     VkPipelineLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layout_info.setLayoutCount = 1;
     layout_info.pSetLayouts = &out->set_layout_;
+    const VkPushConstantRange view_range{both, 0, sizeof(EffectViewPushConstants)};
+    layout_info.pushConstantRangeCount = 1;
+    layout_info.pPushConstantRanges = &view_range;
     ACETATE_VK(vkCreatePipelineLayout(device, &layout_info, nullptr, &out->layout_));
 
     VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};

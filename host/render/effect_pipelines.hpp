@@ -1,10 +1,10 @@
 #pragma once
 // What every effect pass shares: one pipeline layout (a push-descriptor set with the frame
 // uniforms at binding 0, up to 8 inputs at bindings 1..8, floor_data at binding 9, the lights
-// at binding 10, the frame uniforms again at binding 11), a linear clamp-to-edge sampler, and
-// stand-ins for inputs a floor lacks (a transparent 1x1 texture for a missing mask, a 4-float
-// buffer for missing floor data). Pipelines live in the PipelinePool, keyed by the SPIR-V's
-// SHA-256, the output format and the blend.
+// at binding 10, the frame uniforms again at binding 11; the camera as push constants), a linear
+// clamp-to-edge sampler, and stand-ins for inputs a floor lacks (a transparent 1x1 texture for a
+// missing mask, a 4-float buffer for missing floor data). Pipelines live in the PipelinePool, keyed
+// by the SPIR-V's SHA-256, the output format and the blend.
 
 #include <vulkan/vulkan.h>
 
@@ -74,6 +74,13 @@ struct EffectFrameUniforms {
 // clock and of the first phase.
 size_t effect_uniform_bytes(size_t params, size_t phases);
 size_t effect_clock_float(size_t params);
+
+// ABI 1.2: the camera, as the push-constant block AcetateView lays it out (both stages).
+struct EffectViewPushConstants {
+    float view[4];          // origin x, y (scene pixels), scale, 1 / scale
+    float scene_canvas[4];  // the scene's canvas: width, height, 1/width, 1/height
+};
+static_assert(sizeof(EffectViewPushConstants) == 32);
 
 // One light as the GLSL block AcetateLights lays it out (std430: 48 bytes).
 struct EffectLightGpu {

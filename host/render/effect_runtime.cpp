@@ -66,6 +66,18 @@ void bind_pass_masks(EffectInstance& instance, const std::map<std::string, GpuIm
         }
 }
 
+void count_instanced_pixels(EffectInstance& instance, const ViewTransform& view) {
+    const auto* data =
+        instance.has_floor_data ? static_cast<const float*>(instance.floor_data.mapped()) : nullptr;
+    for (EffectPassRuntime& pass : instance.passes) {
+        pass.instanced_pixels = 0;
+        for (uint32_t i = 0; data && i < pass.instance_count; ++i) {
+            const float* r = &data[pass.instance_data_offset + 4 * i];
+            pass.instanced_pixels += view.covered(r[0], r[1], r[2], r[3]).area();
+        }
+    }
+}
+
 void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& instance,
                    const EffectIo& io, FloorFrameReport& report) {
     EffectPipelines& pipelines = renderer.effect_pipelines();
@@ -126,6 +138,13 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
         begin_rendering(cmd, scissor, {output, LoadOp::Keep});
         set_viewport_and_scissor(cmd, output->width(), output->height(), scissor);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.pipeline);
+        const EffectViewPushConstants view{
+            {float(io.view.x), float(io.view.y), float(io.view.scale), float(1 / io.view.scale)},
+            {float(io.scene_width), float(io.scene_height), 1.0f / float(io.scene_width),
+             1.0f / float(io.scene_height)}};
+        vkCmdPushConstants(cmd, pipelines.layout(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(view), &view);
 
         VkDescriptorBufferInfo frame{pass.uniforms.buffer(), 0, VK_WHOLE_SIZE};
         VkDescriptorBufferInfo data{instance.has_floor_data ? instance.floor_data.buffer()

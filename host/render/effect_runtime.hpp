@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/pixel_rect.hpp"
+#include "core/view_transform.hpp"
 #include "plugins/effect_graph.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "plugins/resolve_params.hpp"
@@ -40,9 +41,10 @@ struct EffectPassRuntime {
     uint32_t blend = 0;
     uint32_t instance_count = 0;  // instanced quads; 0 for a fullscreen pass
     uint32_t instance_data_offset = 0;
-    uint64_t instanced_pixels = 0;  // sum of the quads' areas on the canvas
-    bool from_glsl = false;         // compiled from GLSL; false: given as SPIR-V (not checkable)
-    GpuBuffer uniforms;             // laid out as EffectFrameUniforms says
+    uint64_t instanced_pixels =
+        0;                   // sum of the quads' areas on the output (count_instanced_pixels)
+    bool from_glsl = false;  // compiled from GLSL; false: given as SPIR-V (not checkable)
+    GpuBuffer uniforms;      // laid out as EffectFrameUniforms says
 };
 
 struct EffectInstance {
@@ -87,6 +89,9 @@ struct InstanceSetup {
     EffectTargets* targets = nullptr;
     bool checked_builtins = false;      // compile GLSL with checked_builtins_glsl()
     const FloorMasks* masks = nullptr;  // the floor's mask composites, for read_mask
+    // The camera build() is told of (its scale and output size) and whose output size targets
+    // are made at; width 0: the whole canvas at scale 1.
+    ViewTransform view;
 };
 
 // An instance after its plugin's build() and before anything of it is on the GPU: what a live
@@ -127,10 +132,17 @@ struct EffectIo {
     // When set: "result" passes draw once per rect instead (disjoint, inside result_scissor).
     const std::vector<PixelRect>* result_rects = nullptr;
     double time = 0;  // seconds; phases and the clock are reduced from it in double
-    uint32_t canvas_width = 0, canvas_height = 0;
+    uint32_t canvas_width = 0, canvas_height = 0;  // of "previous" and "result": the output
+    // The camera (the block AcetateView) and the scene's canvas size.
+    ViewTransform view;
+    uint32_t scene_width = 0, scene_height = 0;
     bool warm_up = false;       // shade one pixel per pass (load-time pipeline warm-up)
     GpuTimer* timer = nullptr;  // marks each pass with its label when the frame is timed
 };
+
+// Counts each instanced pass's quads (their floor_data rects, scene pixels) as the output of
+// `view` shows them: EffectPassRuntime::instanced_pixels. At load and whenever the camera moves.
+void count_instanced_pixels(EffectInstance& instance, const ViewTransform& view);
 
 // Resolves the instance's mask inputs to images: `masks` are its floor's (none for a global
 // effect); a kind missing there reads `blank` (transparent). Called once at load.

@@ -8,7 +8,7 @@
 namespace acetate {
 
 void describe_floor(const SceneDesc& scene, int64_t floor, const EffectDescriptor& d,
-                    const ParamVectors& params, FloorFacts& facts) {
+                    const ParamVectors& params, const ViewTransform& view, FloorFacts& facts) {
     if (floor >= 0) {
         const FloorDesc& f = scene.floors[size_t(floor)];
         facts.floor_name = f.name;
@@ -63,6 +63,10 @@ void describe_floor(const SceneDesc& scene, int64_t floor, const EffectDescripto
     info.coverage_bounds[2] = int32_t(bounds.x1), info.coverage_bounds[3] = int32_t(bounds.y1);
     info.floor_count = uint32_t(scene.floors.size());
     info.param_vectors = facts.param_vectors.data();
+    info.host_abi_minor = ACETATE_ABI_MINOR;
+    info.render_scale = float(view.scale);
+    info.render_width = view.width;
+    info.render_height = view.height;
 }
 
 }  // namespace acetate

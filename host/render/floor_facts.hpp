@@ -1,6 +1,6 @@
 #pragma once
-// What build() is told about its floor: the AcetateFloorInfo of one effect instance (ABI 1.0
-// and 1.1 fields) and everything it points to, made from the scene's description of the floor
+// What build() is told about its floor: the AcetateFloorInfo of one effect instance (ABI 1.0,
+// 1.1 and 1.2 fields) and everything it points to, made from the scene's description of the floor
 // and the instance's parameters. The host's load and `acetate check-shaders` both use it.
 
 #include <acetate/effect.h>
@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/view_transform.hpp"
 #include "plugins/effect_descriptor.hpp"
 #include "plugins/resolve_params.hpp"
 #include "scene/scene.hpp"
@@ -27,9 +28,10 @@ struct FloorFacts {
     AcetateFloorInfo info{};
 };
 
-// Fills `facts` for an instance on `floor` of `scene` (-1: a global instance). `facts` must not
+// Fills `facts` for an instance on `floor` of `scene` (-1: a global instance) rendered through
+// `view` (its scale and output size; ViewTransform::whole without a camera). `facts` must not
 // move afterwards: `facts.info` points into it.
 void describe_floor(const SceneDesc& scene, int64_t floor, const EffectDescriptor& d,
-                    const ParamVectors& params, FloorFacts& facts);
+                    const ParamVectors& params, const ViewTransform& view, FloorFacts& facts);
 
 }  // namespace acetate

@@ -34,6 +34,24 @@ bool Compositor::expands(uint32_t floor) const {
     return std::any_of(effects.begin(), effects.end(), [](const auto& e) { return e->expanding; });
 }
 
+EffectIo Compositor::effect_io(double time) const {
+    EffectIo io;
+    io.time = time;
+    io.canvas_width = width_;
+    io.canvas_height = height_;
+    io.view = view_;
+    io.scene_width = scene_.width;
+    io.scene_height = scene_.height;
+    io.timer = timer_.get();
+    return io;
+}
+
+VkSampler Compositor::tile_sampler(const LoadedTile& tile) const {
+    // Texels land on pixels only when the tile is drawn at its own size and the camera keeps
+    // whole pixels whole; otherwise the tile is filtered.
+    return pipelines_->tile_sampler(tile.one_to_one && view_.pixel_aligned());
+}
+
 void Compositor::set_scissor(VkCommandBuffer cmd, const PixelRect& rect) {
     set_viewport_and_scissor(cmd, width_, height_, rect);
 }
@@ -69,16 +87,19 @@ void Compositor::draw_tiles(VkCommandBuffer cmd, HostPass pass, uint32_t floor,
     const LoadedFloor& loaded = resources_->floors()[floor];
     const auto tint = isolation_tint(floor);
     set_scissor(cmd, scissor);
-    for (const LoadedTile& tile : loaded.tiles) {
-        const PixelRect shaded = intersect(tile.pixels, scissor);
+    for (size_t t = 0; t < loaded.tiles.size(); ++t) {
+        const LoadedTile& tile = loaded.tiles[t];
+        // A tile outside the camera's region (or the scissor) costs nothing.
+        const PixelRect shaded = intersect(tile_pixels_[floor][t], scissor);
         if (shaded.empty()) continue;
-        bind(cmd, pass, tile.texture->view(), tile.texture->view(),
-             pipelines_->tile_sampler(tile.one_to_one));
+        bind(cmd, pass, tile.texture->view(), tile.texture->view(), tile_sampler(tile));
         TilePushConstants push;
         push.tile_rect[0] = float(tile.rect.x);
         push.tile_rect[1] = float(tile.rect.y);
         push.tile_rect[2] = float(tile.rect.width);
         push.tile_rect[3] = float(tile.rect.height);
+        push.view[0] = float(view_.x), push.view[1] = float(view_.y);
+        push.view[2] = float(view_.scale), push.view[3] = float(1 / view_.scale);
         std::copy(tint.begin(), tint.end(), push.isolation_tint);
         push.canvas_size[0] = float(width_);
         push.canvas_size[1] = float(height_);
@@ -169,16 +190,12 @@ GpuImage* Compositor::record_floor_effects(VkCommandBuffer cmd, const FloorStep&
     const size_t run = std::min<size_t>(effects.size(), floor_effects_run_);
     for (size_t i = 0; i < run; ++i) {
         const auto& effect = effects[i];
-        EffectIo io;
+        EffectIo io = effect_io(time);
         io.previous = current;
         io.result = next;
         io.result_scissor =
             effect->expanding || expanding ? expansion_areas_[step.floor] : step.scissor;
         io.result_rects = rects;
-        io.time = time;
-        io.canvas_width = width_;
-        io.canvas_height = height_;
-        io.timer = timer_.get();
         // What "result" holds before this effect writes it: the poison where its passes
         // shade, the zeros (or tiles) of today elsewhere.
         if (options_.poison) {
@@ -239,14 +256,10 @@ void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, d
     report.scissor = {0, 0, int64_t(width_), int64_t(height_)};
     for (size_t e = 0; e < run; ++e) {
         const auto& effect = global_effects_[e];
-        EffectIo io;
+        EffectIo io = effect_io(time);
         io.previous = current;
         io.result = next;
         io.result_scissor = report.scissor;  // every pass writes every pixel of "result"
-        io.time = time;
-        io.canvas_width = width_;
-        io.canvas_height = height_;
-        io.timer = timer_.get();
         if (options_.poison) fill_area(cmd, *next, io.result_scissor, *options_.poison);
         record_effect(cmd, renderer_, *effect, io, report);
         std::swap(current, next);

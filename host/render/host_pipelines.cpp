@@ -33,6 +33,8 @@ const char* host_pass_name(HostPass stage) {
             return "tile-to-target-isolation";
         case HostPass::TileToAccumIsolation:
             return "tile-to-accumulation-isolation";
+        case HostPass::MaskView:
+            return "mask-view";
         case HostPass::Count:
             break;
     }
@@ -73,6 +75,8 @@ StageState state_of(HostPass stage) {
             return {"fullscreen.vert", "inject.frag", true, VK_COMPARE_OP_EQUAL, false, false};
         case HostPass::InjectUncovered:
             return {"fullscreen.vert", "inject.frag", true, VK_COMPARE_OP_NOT_EQUAL, false, false};
+        case HostPass::MaskView:
+            return {"fullscreen.vert", "mask_view.frag", false, VK_COMPARE_OP_ALWAYS, false, false};
         default:
             return {"fullscreen.vert", "output.frag", false, VK_COMPARE_OP_ALWAYS, false, false};
     }

@@ -23,7 +23,8 @@ class PipelinePool;
 struct TilePushConstants {         // tile.vert, tile.frag
     float tile_rect[4] = {};       // x, y, width, height in scene pixels
     float isolation_tint[4] = {};  // the floor's tint (rgb); only the isolation variants read it
-    float canvas_size[2] = {};     // in pixels
+    float view[4] = {0, 0, 1, 1};  // the camera: origin x, y (scene pixels), scale, 1/scale
+    float canvas_size[2] = {};     // the output, in pixels
 };
 struct CompositePushConstants {   // composite.frag
     uint32_t violation_slot = 0;  // the floor's counter in the violation buffer
@@ -35,8 +36,13 @@ struct OutputPushConstants {   // output.frag
     float background[4] = {};  // the canvas background, straight alpha, linear
     uint32_t view = 0;         // OutputView (render/output_view.hpp)
 };
-static_assert(sizeof(TilePushConstants) == 40 && sizeof(CompositePushConstants) == 4 &&
-              sizeof(InjectPushConstants) == 16 && sizeof(OutputPushConstants) == 20);
+struct MaskViewPushConstants {  // mask_view.frag
+    float view[4] = {};         // origin x, y (scene pixels), scale, 1/scale
+    float canvas[4] = {};       // the scene's canvas: width, height, 1/width, 1/height
+};
+static_assert(sizeof(MaskViewPushConstants) == 32 && sizeof(TilePushConstants) == 56 &&
+              sizeof(CompositePushConstants) == 4 && sizeof(InjectPushConstants) == 16 &&
+              sizeof(OutputPushConstants) == 20);
 inline constexpr uint32_t kHostPushConstantBytes = sizeof(TilePushConstants);
 
 enum class HostPass {
@@ -51,6 +57,7 @@ enum class HostPass {
     // push constant, because lavapipe runs both sides of such a branch for every pixel.
     TileToTargetIsolation,
     TileToAccumIsolation,
+    MaskView,  // a floor's scene-space mask -> its render-pixel copy under a camera; replace
     Count
 };
 const char* host_pass_name(HostPass pass);

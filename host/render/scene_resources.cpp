@@ -146,12 +146,6 @@ Result<std::unique_ptr<SceneResources>> SceneResources::load(
     return out;
 }
 
-std::vector<FloorGeometry> SceneResources::geometry() const {
-    std::vector<FloorGeometry> out;
-    for (const LoadedFloor& f : floors_) out.push_back(f.geometry);
-    return out;
-}
-
 std::vector<const GpuImage*> SceneResources::images() const {
     std::vector<const GpuImage*> out;
     for (const auto& t : textures_) out.push_back(t.get());

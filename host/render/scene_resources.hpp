@@ -23,7 +23,7 @@ class VulkanContext;
 struct LoadedTile {
     const GpuImage* texture = nullptr;
     SceneRect rect;
-    PixelRect pixels;         // pixels it shades on the canvas
+    PixelRect pixels;         // pixels it shades on the canvas (scene pixels, no camera)
     bool opaque = false;      // alpha is 1 at every texel
     bool one_to_one = false;  // drawn at its own size on whole pixels: texels map to pixels
 };
@@ -32,7 +32,7 @@ struct LoadedFloor {
     std::string name;
     std::vector<LoadedTile> tiles;
     std::map<std::string, GpuImage> masks;  // kind -> scene-space composite, this floor's own
-    FloorGeometry geometry;
+    FloorGeometry geometry;  // in scene pixels; the compositor plans in render pixels
 };
 
 class SceneResources {
@@ -50,7 +50,6 @@ class SceneResources {
     // Tile texels with a == 0 but rgb != 0, or NaN/Inf, summed over the files loaded. The tile
     // stage drops them (no colour without coverage), so they are reported here, once.
     uint64_t tile_texel_violations() const { return tile_texel_violations_; }
-    std::vector<FloorGeometry> geometry() const;
     // A transparent scene-size mask for floors without a kind some effect reads (so a shader
     // may texelFetch at canvas coordinates); null when every floor has every needed kind.
     const GpuImage* blank_mask() const { return blank_mask_ ? &*blank_mask_ : nullptr; }

@@ -1,6 +1,7 @@
 // Compositor::necessary_pixels (compositor.hpp): the floor of what any renderer of this frame
 // must shade, so FrameStats::pixels_shaded can be judged against it.
 #include <algorithm>
+#include <cmath>
 #include <span>
 
 #include "render/compositor.hpp"
@@ -17,8 +18,8 @@ uint64_t Compositor::necessary_pixels(uint32_t active_floor) const {
         if (step.path == FloorPath::Skipped) continue;
         const LoadedFloor& floor = resources_->floors()[step.floor];
         std::vector<PixelRect> covered;
-        for (const LoadedTile& tile : floor.tiles) {
-            const PixelRect shaded = intersect(tile.pixels, canvas);
+        for (size_t t = 0; t < floor.tiles.size(); ++t) {
+            const PixelRect shaded = intersect(tile_pixels_[step.floor][t], canvas);
             pixels += uint64_t(shaded.area());  // each layer's pixels are blended once
             covered.push_back(shaded);
         }
@@ -27,7 +28,8 @@ uint64_t Compositor::necessary_pixels(uint32_t active_floor) const {
         if (run == 0 || !effects_enabled_) continue;
         const std::span effects(all_effects.data(), run);
         // What the floor's effects may change: its tiles' pixels, each grown by the reach the
-        // expanding effects declared (all of the canvas for one that declared none).
+        // expanding effects declared (all of the output for one that declared none), scene
+        // pixels through the camera's scale.
         int64_t reach = 0;
         bool unbounded = false;
         for (const auto& e : effects)
@@ -37,6 +39,7 @@ uint64_t Compositor::necessary_pixels(uint32_t active_floor) const {
                 else
                     unbounded = true;
             }
+        reach = int64_t(std::ceil(double(reach) * view_.scale));
         std::vector<PixelRect> grown;
         for (const PixelRect& r : covered)
             grown.push_back(intersect(

@@ -11,15 +11,19 @@
 // Either way no colour without coverage enters a floor (tile texels breaking that are counted
 // at load).
 layout(push_constant) uniform Push {  // TilePushConstants (render/host_pipelines.hpp)
-    vec4 tile_rect;
+    vec4 tile_rect;       // x, y, width, height in scene pixels
     vec4 isolation_tint;  // the floor's tint (rgb)
+    vec4 view;            // the camera: origin x, y (scene pixels), scale, 1/scale
     vec2 canvas_size;
 } pc;
 layout(set = 0, binding = 0) uniform sampler2D tile;
-layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
 
 void main() {
+    // The texture coordinate from the scene position this pixel shows, not interpolated from
+    // the quad's corners: a camera at a whole-pixel origin then reads every tile with the same
+    // numbers as the whole frame, bit for bit (the corners' NDC would differ in rounding).
+    vec2 uv = (pc.view.xy + gl_FragCoord.xy * pc.view.w - pc.tile_rect.xy) / pc.tile_rect.zw;
     // The sampler makes this exact for a tile drawn at its own size on whole pixels: it is
     // nearest then, and a pixel centre maps to a texel centre (HostPipelines::tile_sampler).
     vec4 c = texture(tile, uv);

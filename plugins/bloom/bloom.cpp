@@ -30,6 +30,7 @@
 
 #include <acetate/effect.hpp>
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "bloom_shaders.hpp"
@@ -85,8 +86,12 @@ class Bloom final : public Effect {
         // The host hands an INT parameter over already rounded and clamped to its declared
         // range; clamping again here is only a guard. The chain runs from level `first` to
         // level `last` (at least one level).
-        const int first = std::clamp(floor[kFirstLevel], 1, 3);
-        const int last = std::clamp(floor[kLevels], first, 8);
+        // Under a camera the chain moves by the scale's power of two, so the halo keeps its
+        // width in scene pixels: at scale 2 each level is half as many scene pixels, and one
+        // level more reaches as far (ABI 1.2; scale 1 without a camera).
+        const int shift = int(std::lround(std::log2(double(floor.render_scale()))));
+        const int first = std::clamp(floor[kFirstLevel] + shift, 1, 3);
+        const int last = std::clamp(floor[kLevels] + shift, first, 8);
         for (int k = first; k <= last; ++k) graph.target(down(k), 1u << k);
         for (int k = first; k < last; ++k) graph.target(up(k), 1u << k);
 

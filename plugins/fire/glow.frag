@@ -7,7 +7,7 @@
 
 void main() {
     vec4 c = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);
-    vec2 uv = gl_FragCoord.xy * 0.25 * acetate_size_texture_glow.zw;
+    vec2 uv = acetate_scene_position(gl_FragCoord.xy) * 0.25 * acetate_size_texture_glow.zw;
     float g = textureLod(texture_glow, uv, 0.0).r;
     float flicker = 0.85 + 0.15 * sin(6.2831853 * phase_flicker_a) * sin(6.2831853 * phase_flicker_b);
     vec3 lit = c.rgb + c.rgb * param_glow_color * (param_glow * g * flicker);

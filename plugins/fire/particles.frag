@@ -75,7 +75,7 @@ void main() {
     uint cycles = uint(kind == 0 ? SMOKE_CYCLES : kind == 1 ? FLAME_CYCLES : EMBER_CYCLES);
     vec4 r = unit4(pcg4d(uvec4(seed, index, id, uint(cycle) % cycles + 1u)));
 
-    vec2 pos = gl_FragCoord.xy;
+    vec2 pos = acetate_scene_position(gl_FragCoord.xy);  // scene pixels, as the emitters
     vec2 jitter = vec2(r.x - 0.5, (r.y - 0.5) * 0.5) * SPREAD;  // |x| <= SPREAD/2, |y| <= SPREAD/4
     vec2 drift = param_wind * (wind_factor * age * life);       // between 0 and wind * life
     vec4 src = vec4(0.0);

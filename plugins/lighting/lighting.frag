@@ -17,7 +17,7 @@ float falloff(float distance_over_radius) {
 
 void main() {
     vec4 c = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);
-    vec2 pos = gl_FragCoord.xy;  // full-resolution pass: scene pixels, y down
+    vec2 pos = acetate_scene_position(gl_FragCoord.xy);  // scene pixels, y down, as the lights
     float ambient = mix(param_night_ambient, param_day_ambient, param_day) * (1.0 - param_darkness);
     vec3 light = vec3(ambient);
     // Points come first, so the preset's cap counts point lights, as it always has; i is the

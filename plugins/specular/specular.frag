@@ -122,7 +122,7 @@ void main() {
 #endif
     float nov = clamp(n.z, MIN_N_DOT_V, 1.0);
 
-    vec3 p = vec3(gl_FragCoord.xy, 0.0);
+    vec3 p = vec3(acetate_scene_position(gl_FragCoord.xy), 0.0);  // scene pixels, as the lights
     vec3 sum = vec3(0.0);
     for (int i = 0; i < POINT_LIGHTS; ++i) {
         AcetateLight l = acetate_lights[i];
@@ -151,7 +151,9 @@ void main() {
     int rate = int(param_sparkle_rate);
     int tick = int(acetate_time_whole) * rate + min(int(acetate_time_fraction * float(rate)),
                                                     rate - 1);
-    uint bits = permute(uvec3(uvec2(at), uint(tick))).x;
+    // Hashed by scene pixel, so a camera's region sparkles as the whole canvas does there.
+    ivec2 scene_pixel = ivec2(floor(acetate_scene_position(gl_FragCoord.xy)));
+    uint bits = permute(uvec3(uvec2(scene_pixel), uint(tick))).x;
     float u = float(bits >> 8u) * (1.0 / 16777216.0);
     float u2 = u * u;
     float u4 = u2 * u2;

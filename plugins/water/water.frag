@@ -74,6 +74,9 @@ Surface surface_at(vec2 pos) {
 // The bed seen through the surface: TAPS taps on a disk around pos + offset, each a bilinear
 // read whose four texels count only if they are on the canvas, water, and at least half as
 // opaque as this pixel. Weights are renormalised over what counted.
+// pos and the offsets are scene pixels; each tap is placed in the scene and only then turned
+// into render pixels, so under a camera a tap lands where it lands in the whole frame (at a
+// whole-pixel origin, on the same texels with the same weights).
 vec3 refracted_bed(vec2 pos, vec4 c, vec2 offset, float dist) {
     float len = length(offset);
     if (len <= 0.0) return c.rgb;  // still water: the bed as it is
@@ -91,7 +94,7 @@ vec3 refracted_bed(vec2 pos, vec4 c, vec2 offset, float dist) {
     for (int i = 0; i < TAPS; ++i) {
         float r = spread * sqrt((float(i) + 0.5) / float(TAPS));  // a Vogel disk
         float theta = float(i) * 2.3999632;
-        vec2 f = pos + offset + r * vec2(cos(theta), sin(theta)) - 0.5;
+        vec2 f = acetate_render_position(pos + offset + r * vec2(cos(theta), sin(theta))) - 0.5;
         ivec2 base = ivec2(floor(f));
         vec2 t = f - vec2(base);
         for (int k = 0; k < 4; ++k) {
@@ -171,7 +174,7 @@ void light_surface(vec2 pos, vec3 n, out vec3 diffuse, out vec3 specular) {
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    vec2 pos = gl_FragCoord.xy;  // full resolution: scene pixels, y down
+    vec2 pos = acetate_scene_position(gl_FragCoord.xy);  // scene pixels, y down
     vec4 c = texelFetch(previous, p, 0);
     if (c.a <= 0.0 || any(lessThan(pos, WATER_BOX.xy)) || any(greaterThanEqual(pos, WATER_BOX.zw))) {
         out_color = c;

@@ -253,6 +253,28 @@ endforeach()
 if(NOT step_output MATCHES "warning: loading unvalidated plugin acetate.water")
   message(FATAL_ERROR "sdk_install_test: no warning for the unvalidated plugins:\n${step_output}")
 endif()
+# The camera: a 640x360 window flown over the harbour at scale 1, then zoomed in at 2. Each
+# scale's first frame builds the effects for it; every later move and frame allocates and
+# compiles nothing.
+run_step("the embedding host flies a camera over the harbour (--fly 4)" ${render_env}
+  "${embedding_host}" "${art}/scene.json" "${WORK_DIR}/embedded-fly" --fly 4 --allow-unvalidated)
+require_file("${WORK_DIR}/embedded-fly/fly-scale100.png")
+require_file("${WORK_DIR}/embedded-fly/fly-scale200.png")
+foreach(scale "1.00" "2.00")
+  string(REGEX MATCHALL "fly scale ${scale} at [^\n]*\(moved\)[^\n]*" moves "${step_output}")
+  list(LENGTH moves count)
+  if(NOT count EQUAL 3)
+    message(FATAL_ERROR "sdk_install_test: 3 moves expected at scale ${scale}:\n${step_output}")
+  endif()
+  foreach(move IN LISTS moves)
+    if(NOT move MATCHES ", 0 allocations, 0 compiles$")
+      message(FATAL_ERROR "sdk_install_test: a camera move that cost more than a frame: ${move}")
+    endif()
+  endforeach()
+  if(NOT step_output MATCHES "fly scale ${scale}: 3 frames after the first in [0-9.]+ s, [0-9.]+ frames per second")
+    message(FATAL_ERROR "sdk_install_test: no frames per second at scale ${scale}:\n${step_output}")
+  endif()
+endforeach()
 
 # ---- 2. Build the out-of-tree example against the installed prefix ----
 file(COPY "${SOURCE_DIR}/examples/out-of-tree-plugin" DESTINATION "${WORK_DIR}/src")

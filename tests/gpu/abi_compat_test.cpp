@@ -142,5 +142,31 @@ TEST_F(AbiCompatTest, SameSourceBuiltAgainstTheCurrentSdkRendersTheSameBits) {
             << "time " << kTimes[i];
 }
 
+// A 1.0 plugin takes gl_FragCoord for scene pixels, so a host with a camera (ABI 1.2) renders it
+// only at the whole canvas and scale 1: another view is refused naming the plugin and its ABI,
+// and leaves the frame as it was.
+TEST_F(AbiCompatTest, APluginBuiltBeforeTheCameraRefusesAnyOtherView) {
+    auto renderer = renderer_for("abi-1.0");
+    ASSERT_TRUE(renderer);
+    auto compositor = Compositor::load(*renderer, fixture_scene(), {});
+    ASSERT_TRUE(compositor) << compositor.error().message;
+    ASSERT_TRUE(compositor.value()->render(1, 2.5f));
+    auto before = compositor.value()->read_output();
+    ASSERT_TRUE(before);
+    auto refused = compositor.value()->set_view_transform({10, 5, 1, 30, 20});
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("floors[0].effects[0]: plugin \"test.abi_fixture\" "
+                                           "was built against ABI 1.0, which has no camera"),
+              std::string::npos)
+        << refused.error().message;
+    EXPECT_EQ(refused.error().plugin, "test.abi_fixture");
+    // The whole canvas at scale 1 is no camera at all: accepted, the same frame.
+    ASSERT_TRUE(compositor.value()->set_view_transform(ViewTransform::whole(61, 37)));
+    ASSERT_TRUE(compositor.value()->render(1, 2.5f));
+    auto after = compositor.value()->read_output();
+    ASSERT_TRUE(after);
+    EXPECT_EQ(first_difference(after.value(), before.value()), before->pixels.size());
+}
+
 }  // namespace
 }  // namespace acetate::test

@@ -21,7 +21,7 @@ TEST(HarnessAbi11, DescribeShowsTheAbiVectorsAndHiddenParameters) {
     auto info = describe_plugin(kProbe);
     ASSERT_TRUE(info) << info.error().message;
     const nlohmann::json j = to_json(info.value());
-    EXPECT_EQ(j["abi"], "1.1");
+    EXPECT_EQ(j["abi"], "1.2");  // built with this tree's header
     EXPECT_EQ(j["hidden_params"], nlohmann::json::array({"taps"}));
     ASSERT_EQ(j["params"].size(), 2u) << j.dump();
     EXPECT_EQ(j["params"][0]["name"], "tint");
@@ -36,7 +36,7 @@ TEST(HarnessAbi11, DescribeShowsTheAbiVectorsAndHiddenParameters) {
 
     auto lighting = describe_plugin(std::filesystem::path(ACETATE_PLUGIN_DIR) / "lighting.so");
     ASSERT_TRUE(lighting) << lighting.error().message;
-    EXPECT_EQ(lighting->abi, "1.1");
+    EXPECT_EQ(lighting->abi, "1.2");
     EXPECT_EQ(lighting->hidden_params, std::vector<std::string>{"max_lights"});
 }
 

@@ -347,6 +347,13 @@ void half_float_positions(const HarnessRun& run) {
         [](const json&, const json& spec) { return spec.value("format", "") == "rgba32f"; },
         "in rgba16f");
 }
+// camera_blind: its light pool moves with the camera, in the one case that looks through one.
+void camera_blind(const HarnessRun& run) {
+    fails_only_where(
+        run, "camera-region", {"relations/camera-region"},
+        [](const json&, const json& spec) { return spec.value("relation", "") == "camera-region"; },
+        "through the camera");
+}
 
 // declared_reach: the reach check runs (the plugin declares a reach) and passes everywhere.
 void reach_checked(const HarnessRun& run) {

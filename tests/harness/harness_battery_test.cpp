@@ -369,7 +369,7 @@ const std::vector<Expectation> kPlugins = {
     // Its loads differ, so the relations, which compare loads, are not judged either.
     {"nondeterministic",
      {"determinism"},
-     {"state-isolation", "canvas-size", "format-agreement"},
+     {"state-isolation", "canvas-size", "format-agreement", "camera-region"},
      false,
      nondeterministic},
     {"crash_second_floor", {}, {}, true, crash_second_floor},
@@ -395,8 +395,9 @@ const std::vector<Expectation> kPlugins = {
     {"high_floor_index", {"finite"}, {}, false, high_floor_index},
     {"no_lights", {"finite"}, {}, false, no_lights},
     {"many_lights", {"load"}, {}, false, many_lights},
-    // A flare across the canvas's centre, in canvas coordinates: canvas-size fails too.
-    {"off_canvas_light", {"finite", "canvas-size"}, {}, false, off_canvas_light},
+    // A flare across the canvas's centre, in canvas coordinates: canvas-size fails too, and so
+    // does camera-region (through a camera, acetate_canvas is the output's size).
+    {"off_canvas_light", {"finite", "canvas-size", "camera-region"}, {}, false, off_canvas_light},
     {"tiny_radius", {"finite"}, {}, false, tiny_radius},
     {"huge_radius", {"finite"}, {}, false, huge_radius},
     {"full_mask", {"finite"}, {}, false, full_mask},
@@ -421,8 +422,15 @@ const std::vector<Expectation> kPlugins = {
     {"fraction_below_one", {}, {}, false, fraction_below_one},
     // One plugin per context and relation (docs/harness.md, "Contexts and relations").
     {"clears_outside_coverage", {"coverage"}, {}, false, clears_outside_coverage},
-    {"canvas_fraction_falloff", {"canvas-size"}, {}, false, canvas_fraction_falloff},
+    // Fractions of acetate_canvas: through a camera that is the output's size, so the falloff
+    // moves with the view too (camera-region).
+    {"canvas_fraction_falloff",
+     {"canvas-size", "camera-region"},
+     {},
+     false,
+     canvas_fraction_falloff},
     {"half_float_positions", {"format-agreement"}, {}, false, half_float_positions},
+    {"camera_blind", {"camera-region"}, {}, false, camera_blind},
     // One plugin per rule the harness gained.
     {"negative_colour", {"non-negative"}, {}, false, negative_colour},
     {"build_leak", {"memory"}, {}, false, build_leak},

@@ -56,7 +56,7 @@ TEST(EffectDescriptor, APluginBuiltForANewerMinorIsRefusedNamingBothVersions) {
     Descriptor fake;
     fake.d.abi_minor = ACETATE_ABI_MINOR + 1;
     EXPECT_EQ(refusal(fake.copy()),
-              "fake.so: built for Acetate ABI 1.2; this host supports ABI 1.1");
+              "fake.so: built for Acetate ABI 1.3; this host supports ABI 1.2");
 }
 
 // A plugin built against 1.0 has the shorter descriptor: accepted as minor 0, and nothing past

@@ -1,5 +1,5 @@
 /*
- * acetate/effect.h -- the Acetate effect plugin ABI, version 1.1.
+ * acetate/effect.h -- the Acetate effect plugin ABI, version 1.2.
  *
  * A plugin is a shared library exporting ONE function, acetate_effect_entry_v1. Everything
  * crossing the boundary is C: plain structs of fixed-size fields, opaque handles, int32 status
@@ -30,6 +30,17 @@
  * masks readable at build (read_mask); target formats (declare_target_info); declared reach
  * (set_reach); periodic phases computed in double precision (declare_phase); per-pass input
  * names and defines; struct_size-first forms of the target and texture descriptions.
+ *
+ * What 1.2 added: a camera. A host may render a region of the scene at a scale (an interactive
+ * program pans and zooms): "previous", "result", every target and every mask a pass reads are
+ * then in render pixels, the camera's output, not scene pixels. build() is told the scale and
+ * the render size it builds for (AcetateFloorInfo's 1.2 fields) and runs again when they
+ * change; every pass sees the camera in the push-constant block AcetateView and converts with
+ * acetate_scene_position() and acetate_render_position() (docs/plugin-guide.md, "Cameras").
+ * Lengths a plugin gives the host stay in scene pixels: lights, floor data rects of instanced
+ * quads, the declared reach, coverage bounds, read_mask's image. A host renders a plugin built
+ * against 1.0 or 1.1 only at the whole canvas and scale 1 (it refuses another camera, naming
+ * the plugin), where every 1.2 field has the value that makes it read as before.
  *
  * One way to do each thing. Where 1.1 added a fuller form of a 1.0 function, new code uses the
  * fuller one and the older stays only for plugins built before it: declare_target_info, not
@@ -70,9 +81,9 @@ extern "C" {
 /* The ABI major version this header describes: what the host passes to the entry point.
  * Fixed by ABI. */
 #define ACETATE_ABI_VERSION 1u
-/* The minor version (1.1): additions only. The descriptor's abi_minor says which minor a
+/* The minor version (1.2): additions only. The descriptor's abi_minor says which minor a
  * plugin was built against; a host refuses a plugin newer than itself. */
-#define ACETATE_ABI_MINOR 1u
+#define ACETATE_ABI_MINOR 2u
 /* The one symbol a plugin exports. Fixed by ABI. */
 #define ACETATE_ENTRY_POINT_NAME "acetate_effect_entry_v1"
 
@@ -251,9 +262,20 @@ typedef struct AcetateFloorInfo {
     /* 4 floats per parameter, in the order of params: a vector parameter's components (x, y,
      * z), a scalar's value in x; the rest 0. */
     const float* param_vectors;
+    /* ---- 1.2 (check struct_size before reading) ---- */
+    uint32_t host_abi_minor; /* the ABI minor the host implements (2 for a 1.2 host) */
+    /* Render pixels per scene pixel this instance is built for (> 0; 1 without a camera): a
+     * blur of 8 scene pixels is 8 * render_scale render pixels. build() runs again when the
+     * program changes the camera's scale. */
+    float render_scale;
+    /* The size of "previous" and "result" (the camera's output; the canvas without one). A
+     * target of divisor d is ceil(render_width / d) x ceil(render_height / d). */
+    uint32_t render_width;
+    uint32_t render_height;
 } AcetateFloorInfo;
 
-/* An intermediate target: RGBA in the host's target format, ceil(canvas / divisor) in size. */
+/* An intermediate target: RGBA in the host's target format, ceil(render size / divisor) in size
+ * (the render size is the canvas unless a camera says otherwise, see render_width). */
 typedef struct AcetateTargetDesc {
     const char* name; /* [a-z][a-z0-9_]*, unique within the instance; not "previous"/"result" */
     uint32_t divisor; /* 1, 2, 4, 8, ... */
@@ -270,7 +292,8 @@ typedef struct AcetateTargetInfo {
 
 /*
  * 1.1: a mask as build() reads it (read_mask): the floor's masks of one kind composited into one
- * scene-space image, canvas-sized RGBA floats as the mask files hold them (data:
+ * scene-space image (scene pixels whatever the camera; a pass reading "mask.<kind>" reads it in
+ * render pixels, like "previous"), canvas-sized RGBA floats as the mask files hold them (data:
  * not colour-decoded, not premultiplied), row-major, y down. Owned by the
  * host, read-only, valid only until build() returns. A floor without the kind reads an all-zero
  * image of the same size.
@@ -304,6 +327,14 @@ typedef struct AcetateMaskImage {
  * `flat in int acetate_instance` (i); it reads any further per-instance data from floor_data.
  * Only the quads' pixels are shaded, so it usually follows a pass that copies "previous" into
  * the same output, and blends with ACETATE_BLEND_ADD or ACETATE_BLEND_OVER.
+ *
+ * 1.2: the camera. Every pass (vertex and fragment stage) also sees the push-constant block
+ *   AcetateView { vec4 acetate_view; vec4 acetate_scene_canvas; }
+ * acetate_view = (origin x, origin y, scale, 1 / scale): render pixel p (gl_FragCoord.xy of a
+ * full-size pass) shows scene position origin + p / scale; acetate_scene_canvas = the scene's
+ * canvas (w, h, 1/w, 1/h). The preamble defines acetate_scene_position(vec2 render_pixel) and
+ * acetate_render_position(vec2 scene_position) on them. Without a camera acetate_view is
+ * (0, 0, 1, 1). A whole SPIR-V module declares the block with the same layout.
  */
 typedef struct AcetatePassDesc {
     uint32_t struct_size;
@@ -387,8 +418,9 @@ typedef struct AcetateHostApi {
      * descriptor does not list in masks, mask NULL or its struct_size too small. */
     AcetateStatus (*read_mask)(AcetateGraph* graph, const char* kind, AcetateMaskImage* mask);
     /* A coverage-expanding effect's reach: how many pixels past its floor's coverage bounds it
-     * may change. The host then shades "result" only within the bounds grown by the reach
-     * (without it, the whole canvas). Errors: a preserving effect, more than 16384. */
+     * may change (1.2: scene pixels; the host scales it by the camera). The host then shades
+     * "result" only within the bounds grown by the reach (without it, the whole canvas). Errors: a
+     * preserving effect, more than 16384. */
     AcetateStatus (*set_reach)(AcetateGraph* graph, uint32_t pixels);
     /* Declares phase_<name> in GLSL: fract(time / period_seconds), computed each frame in
      * double precision, so an animation with that period is as smooth at 10^5 s as at 1 s.

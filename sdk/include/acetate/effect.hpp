@@ -181,6 +181,28 @@ class Floor {
             if (l.kind == ACETATE_LIGHT_SUN) return l;
         return std::nullopt;
     }
+    // 1.2: the ABI minor the host implements (1.0 and 1.1 hosts do not say: 0 for either,
+    // which only matters to a plugin that wants to know whether a camera can exist).
+    uint32_t host_abi_minor() const {
+        return ACETATE_SDK_HAS(info_, AcetateFloorInfo, host_abi_minor) ? info_.host_abi_minor : 0;
+    }
+    // 1.2: render pixels per scene pixel this instance is built for, and the size of
+    // "previous" and "result". A host before 1.2 has no camera: scale 1, the canvas.
+    float render_scale() const {
+        return ACETATE_SDK_HAS(info_, AcetateFloorInfo, render_scale) ? info_.render_scale : 1.0f;
+    }
+    uint32_t render_width() const {
+        return ACETATE_SDK_HAS(info_, AcetateFloorInfo, render_height) ? info_.render_width
+                                                                       : info_.canvas_width;
+    }
+    uint32_t render_height() const {
+        return ACETATE_SDK_HAS(info_, AcetateFloorInfo, render_height) ? info_.render_height
+                                                                       : info_.canvas_height;
+    }
+    // A length in scene pixels (a blur radius, a flame's height) in render pixels at this
+    // instance's scale: what a pass that counts texels needs.
+    float render_pixels(float scene_pixels) const { return scene_pixels * render_scale(); }
+
     // 1.1: the floor's mask of `kind` (one the effect lists in masks), read on the CPU at build.
     Mask mask(std::string_view kind) const {
         if (!host_ || !ACETATE_SDK_HAS(*host_, AcetateHostApi, read_mask) || !host_->read_mask)

@@ -26,7 +26,8 @@ class ClearsOutsideCoverage final : public Effect {
                     .glsl = R"(
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    if (any(lessThan(p, BOUNDS.xy)) || any(greaterThanEqual(p, BOUNDS.zw))) {
+    ivec2 scene = ivec2(floor(acetate_scene_position(gl_FragCoord.xy)));
+    if (any(lessThan(scene, BOUNDS.xy)) || any(greaterThanEqual(scene, BOUNDS.zw))) {
         out_color = vec4(0.0);
         return;
     }

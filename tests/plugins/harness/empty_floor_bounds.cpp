@@ -26,7 +26,7 @@ class EmptyFloorBounds final : public acetate::sdk::Effect {
                     .glsl = R"(
 void main() {
     vec4 prev = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);
-    vec2 at = (gl_FragCoord.xy - vec2(floor_data[0], floor_data[1])) /
+    vec2 at = (acetate_scene_position(gl_FragCoord.xy) - vec2(floor_data[0], floor_data[1])) /
               vec2(floor_data[2], floor_data[3]);
     float edge = length(at - 0.5);
     out_color = vec4(prev.rgb * (1.0 - 0.2 * edge / (1.0 + edge)), prev.a);

@@ -20,7 +20,7 @@ class HalfFloatPositions final : public acetate::sdk::Effect {
         graph.target("positions", 1);  // the floor's format: the mistake
         graph.pass({.name = "positions",
                     .glsl = R"(
-void main() { out_color = vec4(gl_FragCoord.xy, 0.0, 1.0); }
+void main() { out_color = vec4(acetate_scene_position(gl_FragCoord.xy), 0.0, 1.0); }
 )",
                     .output = "positions"});
         graph.pass({.name = "stripes",

@@ -29,7 +29,8 @@ void main() {
     vec4 prev = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);
     float lit = 0.0;
     for (int i = 0; i < int(floor_data[0]); ++i) {
-        vec2 d = gl_FragCoord.xy - vec2(floor_data[1 + 4 * i], floor_data[2 + 4 * i]);
+        vec2 d = acetate_scene_position(gl_FragCoord.xy) -
+                 vec2(floor_data[1 + 4 * i], floor_data[2 + 4 * i]);
         float e = exp((floor_data[3 + 4 * i] - length(d)) / 256.0);  // overflows with r
         lit += floor_data[4 + 4 * i] * e / (1.0 + e);
     }

@@ -27,7 +27,7 @@ class OtherCanvasLoad final : public acetate::sdk::Effect {
                     .glsl = R"(
 void main() {
     vec4 prev = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);
-    vec2 q = 2.0 * gl_FragCoord.xy / vec2(floor_data[0], floor_data[1]) - 1.0;
+    vec2 q = 2.0 * acetate_scene_position(gl_FragCoord.xy) / vec2(floor_data[0], floor_data[1]) - 1.0;
     float vignette = sqrt(2.0 - dot(q, q)) * 0.70710678;  // 1 at the centre, 0 at the corners
     out_color = vec4(prev.rgb * (0.7 + 0.3 * vignette), prev.a);
 }

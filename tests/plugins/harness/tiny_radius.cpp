@@ -43,7 +43,7 @@ void main() {
     vec3 light = vec3(0.0);
     for (int i = 0; i < int(floor_data[0]); ++i) {
         int at = 1 + 8 * i;
-        vec2 d = gl_FragCoord.xy - vec2(floor_data[at], floor_data[at + 1]);
+        vec2 d = acetate_scene_position(gl_FragCoord.xy) - vec2(floor_data[at], floor_data[at + 1]);
         float r = floor_data[at + 2];
         float weight = exp(-dot(d, d) / (r * r)) / floor_data[at + 4];  // 0 / 0 for tiny r
         light += floor_data[at + 3] * weight *

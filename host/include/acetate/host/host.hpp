@@ -138,7 +138,7 @@ struct StepStatistics {
     uint32_t floor = 0;  // UINT32_MAX for the global effects
     std::string path;    // "skipped", "direct", "through-target" or "global"
     std::string why;     // why the frame's plan chose that path
-    int64_t x = 0, y = 0, width = 0, height = 0;  // the scissor, scene pixels
+    int64_t x = 0, y = 0, width = 0, height = 0;  // the scissor, output pixels
     uint32_t passes = 0;
     uint64_t pixels_shaded = 0;
     uint64_t violations = 0;
@@ -173,6 +173,27 @@ struct ParamChange {
     uint64_t images_loaded = 0, targets_allocated = 0, shaders_compiled = 0, pipelines_created = 0;
 };
 
+// What a frame shows: the scene's region from (x, y), `width` x `height` scene pixels, at
+// `scale` output pixels per scene pixel, in an output of round(width * scale) x
+// round(height * scale) pixels (read_frame()'s size). A program that keeps its window's size
+// while it zooms sets width = window width / scale. The region may reach past the canvas,
+// where the frame shows the background. Without set_camera: the whole canvas at scale 1.
+struct Camera {
+    double x = 0, y = 0;           // the region's top-left corner, scene pixels
+    double width = 0, height = 0;  // the region's size, scene pixels
+    double scale = 1;              // output pixels per scene pixel, 1/64 to 64
+};
+// What a camera change cost. A move at the same scale and output size changes numbers the
+// frame reads and resamples the floors' masks (if effects read any): nothing is built, loaded,
+// allocated or compiled. Another scale runs every effect's build() again, told the new scale
+// (`rebuilt`): an effect whose passes change is rebuilt, its pipelines from the Host's pool.
+// Another output size (`resized`) also allocates the render targets again.
+struct CameraChange {
+    bool rebuilt = false;
+    bool resized = false;
+    double milliseconds = 0;
+    uint64_t images_loaded = 0, targets_allocated = 0, shaders_compiled = 0, pipelines_created = 0;
+};
 // The GPU time of one step of a frame (SceneOptions::gpu_timings).
 struct PassTime {
     std::string name;  // "floor 0 tiles", an effect pass ("floor0.acetate.water.shade"), "output"
@@ -280,7 +301,7 @@ class Scene {
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 
-    uint32_t width() const;  // the canvas, in pixels
+    uint32_t width() const;  // the canvas, in scene pixels (the frame's size is the camera's)
     uint32_t height() const;
     uint32_t floor_count() const;
     std::string floor_name(uint32_t floor) const;  // "" for a floor out of range
@@ -304,6 +325,14 @@ class Scene {
                                   const std::vector<float>& value);
     Result<ParamChange> set_preset(const EffectSlot& effect, const std::string& preset);
 
+    // The camera for later frames (see Camera, CameraChange). Refused, with nothing changed,
+    // naming the scene and the field or plugin: a number out of its range (each named), an
+    // output larger than the device allows, an effect whose plugin was built against ABI 1.0
+    // or 1.1 (they know no camera: such a scene renders only the whole canvas at scale 1), or
+    // an effect's build() failing at the new scale. Floors, tiles and masks outside the region
+    // cost nothing; its live parameters, time and active floor are kept.
+    Result<CameraChange> set_camera(const Camera& camera);
+    Camera camera() const;
     // Renders floors 0..active_floor, their effects, the composite and the global effects.
     // Allocates nothing. Fails on a device error, or with validation on, on a validation
     // message during the frame.
