@@ -215,21 +215,29 @@ void plan_contract(const PlanContext& context, Planner& p) {
         s.relation = Relation::FormatAgreement;
         p.add(s);
     }
-    if (floor_effect) {
-        CaseSpec s = p.contract("relations/camera-region",
-                                "two floors, transparent along every edge, against the same "
-                                "floors through a camera whose region starts left of and above "
-                                "the canvas (ABI 1.2)",
-                                128, 96, Pattern::Standard, 2);
-        s.relation = Relation::CameraRegion;
-        p.add(s);
-    }
-    if (floor_effect) {
-        CaseSpec s = p.contract("relations/canvas-size",
-                                "two floors, transparent along the right and bottom edges, "
-                                "against the same floors on a larger canvas",
-                                128, 96, Pattern::Standard, 2);
-        s.relation = Relation::CanvasSize;
+    // The relations a floor effect is held to, each on two floors of the standard tile.
+    struct RelationCase {
+        const char* id;
+        const char* description;
+        Relation relation;
+    };
+    constexpr RelationCase kFloorRelations[] = {
+        {"relations/camera-region",
+         "two floors, transparent along every edge, against the same floors through a camera "
+         "whose region starts left of and above the canvas (ABI 1.2)",
+         Relation::CameraRegion},
+        {"relations/camera-scale",
+         "two floors against the same floors through a camera over the whole canvas at scale "
+         "1/2 (ABI 1.2)",
+         Relation::CameraScale},
+        {"relations/canvas-size",
+         "two floors, transparent along the right and bottom edges, against the same floors on "
+         "a larger canvas",
+         Relation::CanvasSize}};
+    for (const RelationCase& r : kFloorRelations) {
+        if (!floor_effect) break;
+        CaseSpec s = p.contract(r.id, r.description, 128, 96, Pattern::Standard, 2);
+        s.relation = r.relation;
         p.add(s);
     }
 

@@ -9,6 +9,7 @@
 
 #include "case_kinds.hpp"
 #include "core/json_fields.hpp"
+#include "plugins/effect_descriptor.hpp"
 
 namespace acetate::harness {
 namespace {
@@ -30,7 +31,7 @@ static_assert(std::size(kFloorVariantNames) == kFloorVariantCount);
 constexpr const char* kPoisonNames[] = {"none", "nan", "large", "plain"};
 constexpr const char* kFormatNames[] = {"rgba16f", "rgba32f"};
 constexpr const char* kRelationNames[] = {"none", "canvas-size", "format-agreement",
-                                          "camera-region"};
+                                          "camera-region", "camera-scale"};
 
 template <class Enum, size_t N>
 std::optional<Enum> parse_enum(const char* const (&names)[N], const std::string& name) {
@@ -90,6 +91,7 @@ json to_json(const PluginInfo& info) {
             {"hidden_params", info.hidden_params},
             {"presets", info.presets},
             {"abi", info.abi},
+            {"scale_tolerance", info.scale_tolerance},
             {"source_digest", info.source_digest},
             {"binary_sha256", info.binary_sha256},
             {"reference_scenes", scenes}};
@@ -100,7 +102,7 @@ PluginInfo read_plugin_info(const json& j, const std::string& path) {
     expect_object(j, path,
                   {"file", "id", "version", "display_name", "scope", "coverage", "masks", "params",
                    "hidden_params", "abi", "presets", "source_digest", "binary_sha256"},
-                  {"reference_scenes"});
+                  {"reference_scenes", "scale_tolerance"});
     PluginInfo info;
     info.file = text(j, path, "file");
     info.id = text(j, path, "id");
@@ -122,6 +124,12 @@ PluginInfo read_plugin_info(const json& j, const std::string& path) {
     }
     info.hidden_params = texts(j, path, "hidden_params");
     info.abi = text(j, path, "abi");
+    if (optional(j, "scale_tolerance")) {
+        info.scale_tolerance = finite_float(j, path, "scale_tolerance");
+        if (!(info.scale_tolerance >= 0 && info.scale_tolerance <= kMaxScaleTolerance))
+            fail(field(path, "scale_tolerance"),
+                 fmt::format("{} is not from 0 to {}", info.scale_tolerance, kMaxScaleTolerance));
+    }
     info.presets = texts(j, path, "presets");
     info.source_digest = text(j, path, "source_digest");
     info.binary_sha256 = text(j, path, "binary_sha256");

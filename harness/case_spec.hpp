@@ -39,6 +39,8 @@ struct PluginInfo {
     std::vector<std::string> hidden_params;  // set by presets only (ABI 1.1): not varied
     std::vector<std::string> presets;
     std::string abi;  // "1.0", "1.1": what the plugin was built against
+    // How far a render at another scale may stray (ABI 1.2's scale_tolerance; camera-scale).
+    float scale_tolerance = 0;
     std::string source_digest, binary_sha256;
     // Not declared by the plugin: found beside its references (find_reference_scenes), and
     // carried with it so every process (and a merge) plans the same reference cases.
@@ -114,8 +116,9 @@ const char* to_string(TargetFormat format);
 // A relation that needs no oracle (relation_checks.cpp), checked in a contract case besides the
 // contract: the plugin's floors on a canvas grown to the right and below are unchanged; the
 // same scene in rgba16f and rgba32f agrees within half precision; the same scene seen through
-// a camera whose region is shifted (ABI 1.2) shows the same pixels where the canvas lands.
-enum class Relation { None, CanvasSize, FormatAgreement, CameraRegion };
+// a camera whose region is shifted (ABI 1.2) shows the same pixels where the canvas lands; a
+// camera at scale 1/2 shows what the whole render has there, within the declared tolerance.
+enum class Relation { None, CanvasSize, FormatAgreement, CameraRegion, CameraScale };
 const char* to_string(Relation relation);
 
 // Another plugin an integration case runs beside the one under test.

@@ -42,6 +42,12 @@ constexpr std::array kChecks = {
               "scene seen through a camera whose region starts 13 and 7 pixels left of and "
               "above the canvas, where the canvas lands (the floors are transparent within 8 "
               "pixels of every edge)"},
+    CheckInfo{"camera-scale", "9", "`relations/camera-scale` (floor effects built against ABI 1.2)",
+              true, true,
+              "a channel of the plugin's output through a camera over the whole canvas at scale "
+              "1/2 outside the range the whole render takes over the 2x2 scene pixels the "
+              "output pixel covers and one around them, widened by 2 half-float units and by "
+              "the plugin's declared `scale_tolerance` times the range's largest magnitude"},
     CheckInfo{"format-agreement", "8", "`formats/rgba32f`", true, true,
               "a channel in rgba32f more than 8 half-float units (at the larger of the value and "
               "the input's largest) from the same scene in rgba16f"},

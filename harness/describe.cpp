@@ -92,6 +92,7 @@ Result<PluginInfo> describe_plugin(const fs::path& file, const std::string& requ
             {p.name, type, p.default_value, p.min_value, p.max_value, p.components()});
     }
     info.abi = abi_version_string(d.abi_minor);
+    info.scale_tolerance = d.scale_tolerance;
     for (const auto& [name, values] : d.presets) info.presets.push_back(name);
     info.source_digest = d.source_digest;
     info.binary_sha256 = loaded.value()->binary_sha256;  // what ran, not the file now

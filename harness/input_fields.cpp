@@ -45,7 +45,10 @@ const std::vector<InputEdge> kMasksPresent = {{"absent", "masks/absent"},
                                               {"present", "contract/standard"}};
 const std::vector<InputEdge> kRenderSizes = {
     {"the canvas: no camera", "contract/standard"},
-    {"larger than the canvas: a camera's region around it", "relations/camera-region"}};
+    {"larger than the canvas: a camera's region around it", "relations/camera-region"},
+    {"half the canvas's: the whole canvas at scale 1/2", "relations/camera-scale"}};
+const std::vector<InputEdge> kRenderScales = {{"1", "contract/standard"},
+                                              {"1/2", "relations/camera-scale"}};
 const std::vector<InputEdge> kPluginFloor = {{"floor 0 (of one)", "contract/standard"},
                                              {"floor 1 of two", "floors/one-of-two"},
                                              {"floor 4 of five", "floors/top-of-five"}};
@@ -134,9 +137,7 @@ const std::vector<InputField>& input_fields() {
         observed("AcetateFloorInfo.floor_count", "floors", kFloorCounts),
         observed("AcetateFloorInfo.param_vectors", "params", kParams),
         unobserved("AcetateFloorInfo.host_abi_minor", "the host's build, not the scene"),
-        unobserved("AcetateFloorInfo.render_scale",
-                   "1 in every case: the harness renders at no other scale yet (the shipped "
-                   "plugins are checked at 1/2 by tests/gpu/camera_test.cpp)"),
+        observed("AcetateFloorInfo.render_scale", "camera", kRenderScales),
         observed("AcetateFloorInfo.render_width", "camera", kRenderSizes),
         observed("AcetateFloorInfo.render_height", "camera", kRenderSizes),
         unobserved("AcetateLightInfo.struct_size", "the host's build, not the scene"),

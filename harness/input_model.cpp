@@ -65,8 +65,8 @@ const std::vector<InputDimension>& input_dimensions() {
          "none, or the harness's coverage-expanding spread"},
         {"target format", "the format of the floors' targets and tiles: rgba16f or rgba32f"},
         {"camera",
-         "what the host renders through (ABI 1.2): no camera, or a region around the canvas at "
-         "scale 1 (beside the case's own render)"},
+         "what the host renders through (ABI 1.2): no camera, a region around the canvas at "
+         "scale 1, or the whole canvas at scale 1/2 (each beside the case's own render)"},
     };
     return dimensions;
 }
@@ -96,7 +96,8 @@ std::map<std::string, std::string> describe_inputs(const CaseSpec& s, const Plug
     set("target format", to_string(s.format));
     set("camera", s.relation == Relation::CameraRegion
                       ? "none, and a region starting 13 and 7 pixels left of and above the canvas"
-                      : "none");
+                  : s.relation == Relation::CameraScale ? "none, and the whole canvas at scale 1/2"
+                                                        : "none");
     return in;
 }
 

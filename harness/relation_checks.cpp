@@ -117,6 +117,17 @@ Result<CheckResult> format_agreement(const CaseContext& c, Session& s, CaseWrite
     return relation.finish();
 }
 
+// A plugin built before the camera renders only without one: hosts refuse any other.
+std::optional<CheckResult> camera_unjudged(const CaseContext& c, const char* check) {
+    if (c.plugin.abi != "1.0" && c.plugin.abi != "1.1") return std::nullopt;
+    CheckResult skipped;
+    skipped.check = check;
+    skipped.verdict = Verdict::Skip;
+    skipped.message = fmt::format(
+        "not judged: built against ABI {}, which has no camera (hosts refuse one)", c.plugin.abi);
+    return skipped;
+}
+
 Result<CheckResult> camera_region(const CaseContext& c, Session& s, CaseWriter& w,
                                   const json& params, const std::string& name,
                                   const std::vector<FloorImages>& floors,
@@ -128,16 +139,7 @@ Result<CheckResult> camera_region(const CaseContext& c, Session& s, CaseWriter& 
                     "of and above the canvas give the same pixels where the canvas lands "
                     "(within one half-float unit)",
                     dx, dy));
-    // A plugin built before the camera renders only without one: hosts refuse any other.
-    if (c.plugin.abi == "1.0" || c.plugin.abi == "1.1") {
-        CheckResult skipped;
-        skipped.check = "camera-region";
-        skipped.verdict = Verdict::Skip;
-        skipped.message =
-            fmt::format("not judged: built against ABI {}, which has no camera (hosts refuse one)",
-                        c.plugin.abi);
-        return skipped;
-    }
+    if (auto skipped = camera_unjudged(c, "camera-region")) return *skipped;
     LoadOptions how;
     how.camera =
         ViewTransform{-double(dx), -double(dy), 1, c.spec.width + 2 * dx, c.spec.height + 2 * dy};
@@ -155,6 +157,89 @@ Result<CheckResult> camera_region(const CaseContext& c, Session& s, CaseWriter& 
     }
     heat = relation.heat_maps();
     return relation.finish();
+}
+
+// Each pixel of `half` (the render at 1/2) against `whole` over the 2x2 scene pixels it covers
+// and kCameraScaleReach around them: the range each channel takes there, widened by
+// kCameraScaleUnits half-float units and by `tolerance` times its largest magnitude. Returns
+// the least tolerance that would take every pixel (infinity if some pixel strays where the whole
+// render is 0).
+float compare_to_whole(const FloorImages& floor, const ImageRGBA& half, float tolerance,
+                       CheckAccumulator& out) {
+    float needed = 0;
+    const ImageRGBA& whole = *floor.output;
+    const uint32_t r = kCameraScaleReach;
+    for (uint32_t j = 0; j < half.height; ++j)
+        for (uint32_t i = 0; i < half.width; ++i) {
+            const uint32_t x0 = 2 * i > r ? 2 * i - r : 0, y0 = 2 * j > r ? 2 * j - r : 0;
+            const uint32_t x1 = std::min(whole.width, 2 * i + 2 + r);
+            const uint32_t y1 = std::min(whole.height, 2 * j + 2 + r);
+            const float* v = half.at(i, j);
+            for (int k = 0; k < 4; ++k) {
+                if (std::isnan(v[k])) continue;  // `finite` says so
+                float lo = INFINITY, hi = -INFINITY;
+                for (uint32_t y = y0; y < y1; ++y)
+                    for (uint32_t x = x0; x < x1; ++x) {
+                        const float w = whole.at(x, y)[k];
+                        if (std::isnan(w)) continue;
+                        lo = std::min(lo, w), hi = std::max(hi, w);
+                    }
+                if (!(lo <= hi)) continue;  // every pixel there NaN: `finite` says so
+                const float largest = std::max(std::fabs(lo), std::fabs(hi));
+                const float rounding = kCameraScaleUnits * half_ulp(largest);
+                const float slack = rounding + tolerance * largest;
+                if (v[k] >= lo - slack && v[k] <= hi + slack) continue;
+                const float beyond = std::max(lo - v[k], v[k] - hi) - rounding;
+                needed = std::max(needed, largest > 0 ? beyond / largest : INFINITY);
+                out.violation(
+                    floor, 2 * i, 2 * j,
+                    fmt::format("{} at 1/2 (pixel {}, {}), where the whole render has {} from {:g} "
+                                "to {:g} within {} scene pixel: {}",
+                                format_rgba(v), i, j, "rgba"[k], lo, hi, r,
+                                largest > 0
+                                    ? fmt::format("a scale_tolerance of {:.3g} would "
+                                                  "take it",
+                                                  beyond / largest)
+                                    : std::string("no scale_tolerance takes it (0 there)")));
+                break;
+            }
+        }
+    return needed;
+}
+
+Result<CheckResult> camera_scale(const CaseContext& c, Session& s, CaseWriter& w,
+                                 const json& params, const std::string& name,
+                                 const std::vector<FloorImages>& floors,
+                                 std::map<int64_t, ImageRGBA>& heat) {
+    const float tolerance = c.plugin.scale_tolerance;
+    CheckAccumulator relation(
+        "camera-scale",
+        fmt::format("the same floors through a camera at scale 1/2 lie, pixel by pixel, within "
+                    "the whole render's range over the scene pixels each covers and {} around, "
+                    "widened by {:g} of its largest value (the declared scale_tolerance)",
+                    kCameraScaleReach, tolerance));
+    if (auto skipped = camera_unjudged(c, "camera-scale")) return *skipped;
+    // The whole canvas at 1/2: each output pixel covers 2x2 scene pixels and its centre is
+    // their shared corner, so the floors' tiles reach the effect averaged over those four.
+    LoadOptions how;
+    how.camera = ViewTransform{0, 0, 0.5, c.spec.width / 2, c.spec.height / 2};
+    auto seen = outputs_in(c, s, w, case_layout(c, params), name + ".half", floors, how);
+    if (!seen) return seen.error();
+    if (!*seen) return relation.finish();  // the load failure is recorded already
+    float needed = 0;
+    for (size_t i = 0; i < floors.size(); ++i)
+        needed = std::max(needed, compare_to_whole(floors[i], (**seen)[i], tolerance, relation));
+    heat = relation.heat_maps();
+    CheckResult result = relation.finish();
+    if (needed > 0)
+        result.message += std::isfinite(needed)
+                              ? fmt::format(
+                                    " (every pixel here would take a scale_tolerance of "
+                                    "{:.3g})",
+                                    needed)
+                              : " (no scale_tolerance takes every pixel: some stray where the "
+                                "whole render is 0)";
+    return result;
 }
 
 // Whether a second load of the case's own scene gives the plugin's outputs bit for bit: a
@@ -196,6 +281,8 @@ Result<CheckResult> check_relation(const CaseContext& c, Session& s, CaseWriter&
             return format_agreement(c, s, w, params, name, floors, heat);
         case Relation::CameraRegion:
             return camera_region(c, s, w, params, name, floors, heat);
+        case Relation::CameraScale:
+            return camera_scale(c, s, w, params, name, floors, heat);
         case Relation::None:
             break;
     }

@@ -15,6 +15,12 @@
 //   pixels there. The floors are transparent within kCanvasEdgeBand pixels of every edge. An
 //   effect that takes gl_FragCoord for scene pixels (its lights, its pattern shifted by the
 //   camera) or the output's size for the canvas's fails.
+// - camera-scale (ABI 1.2): the same scene through a camera over the whole canvas at scale 1/2.
+//   Each output pixel must lie within the range the whole render takes over the 2x2 scene
+//   pixels it covers and kCameraScaleReach around them, widened by the plugin's declared
+//   scale_tolerance (a fraction of the range's largest magnitude). An effect that measures a
+//   length in render pixels (a blur of so many texels, a pattern of so many pixels) draws it
+//   twice as large in the scene and fails.
 
 #include <map>
 #include <nlohmann/json.hpp>
@@ -32,6 +38,14 @@ inline constexpr uint32_t kCanvasGrowth[2] = {61, 43};
 // Where the canvas lands in the camera-region relation's output (which is this much larger on
 // every side): odd, and different on the two axes, so no pattern of 2 or 4 pixels hides a shift.
 inline constexpr uint32_t kCameraShift[2] = {13, 7};
+// How far the render at 1/2 may lie outside the whole render's range, in half-float units at
+// the range's largest value: its inputs are the tiles averaged over 2x2 pixels and rounded to
+// the target's half float, once more than the whole render's, and its output rounds once.
+inline constexpr float kCameraScaleUnits = 2;
+// The scene pixels around an output pixel's 2x2 that the whole render's range takes in: at 1/2
+// the tiles reach an effect averaged over 2x2 pixels, so a neighbour read one scene pixel away
+// mixes in pixels one further.
+inline constexpr uint32_t kCameraScaleReach = 1;
 // How far rgba32f and rgba16f may drift apart, in units in the last place of a half float at
 // the larger of the value and the input's largest value. The output's own rounding is half a
 // unit; each pass through a target of the floor's format, and each blend onto one, rounds

@@ -70,6 +70,12 @@ Result<EffectDescriptor> copy_descriptor(const AcetateEffectDescriptor* d,
     }
     const AcetateParamExt* const* exts =
         has(offsetof(AcetateEffectDescriptor, param_exts), sizeof(void*)) ? d->param_exts : nullptr;
+    if (has(offsetof(AcetateEffectDescriptor, scale_tolerance), sizeof(float))) {
+        out.scale_tolerance = d->scale_tolerance;
+        if (!(out.scale_tolerance >= 0 && out.scale_tolerance <= kMaxScaleTolerance))
+            return bad(where, fmt::format("scale_tolerance {} is not a number from 0 to {}",
+                                          out.scale_tolerance, kMaxScaleTolerance));
+    }
     if (!d->id || !is_reverse_dns(d->id))
         return bad(where,
                    fmt::format("id \"{}\" is not a reverse-DNS name like \"com.example.glow\"",

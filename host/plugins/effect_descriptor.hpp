@@ -28,6 +28,9 @@ struct EffectParam {
 struct EffectDescriptor {
     std::string id, display_name, source_digest;
     uint32_t abi_minor = 0;  // the ABI 1.x the plugin was built against
+    // 1.2: how far a render at another scale may stray, a fraction of the largest value there
+    // (0 when not declared).
+    float scale_tolerance = 0;
     uint32_t version[3] = {0, 0, 0};
     uint32_t scope = ACETATE_SCOPE_FLOOR;
     uint32_t coverage = ACETATE_COVERAGE_PRESERVING;
@@ -41,6 +44,10 @@ struct EffectDescriptor {
     int param_index(const std::string& name) const;
     std::string version_string() const;
 };
+
+// The most a descriptor may declare as its scale_tolerance: past four times the largest value
+// around a pixel, the relation would say nothing.
+inline constexpr float kMaxScaleTolerance = 4;
 
 // The ABI version a plugin asks for, read before anything else so that a plugin newer than the
 // host is refused with both versions named rather than with a field it cannot read.

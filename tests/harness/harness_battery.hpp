@@ -149,6 +149,7 @@ void clears_outside_coverage(const HarnessRun& run);
 void canvas_fraction_falloff(const HarnessRun& run);
 void half_float_positions(const HarnessRun& run);
 void camera_blind(const HarnessRun& run);
+void scale_blind(const HarnessRun& run);
 void undefined_away_from_defaults(const HarnessRun& run);
 void reach_checked(const HarnessRun& run);
 void reach_cut_off(const HarnessRun& run);

@@ -354,6 +354,14 @@ void camera_blind(const HarnessRun& run) {
         [](const json&, const json& spec) { return spec.value("relation", "") == "camera-region"; },
         "through the camera");
 }
+// scale_blind: its darkening reaches twice as far at scale 1/2, in the one case that renders
+// at another scale; the message names the pixel at 1/2 and the declared tolerance.
+void scale_blind(const HarnessRun& run) {
+    fails_only_where(
+        run, "camera-scale", {"relations/camera-scale"},
+        [](const json&, const json& spec) { return spec.value("relation", "") == "camera-scale"; },
+        "at 1/2 (pixel");
+}
 
 // declared_reach: the reach check runs (the plugin declares a reach) and passes everywhere.
 void reach_checked(const HarnessRun& run) {

@@ -369,7 +369,7 @@ const std::vector<Expectation> kPlugins = {
     // Its loads differ, so the relations, which compare loads, are not judged either.
     {"nondeterministic",
      {"determinism"},
-     {"state-isolation", "canvas-size", "format-agreement", "camera-region"},
+     {"state-isolation", "canvas-size", "format-agreement", "camera-region", "camera-scale"},
      false,
      nondeterministic},
     {"crash_second_floor", {}, {}, true, crash_second_floor},
@@ -396,8 +396,12 @@ const std::vector<Expectation> kPlugins = {
     {"no_lights", {"finite"}, {}, false, no_lights},
     {"many_lights", {"load"}, {}, false, many_lights},
     // A flare across the canvas's centre, in canvas coordinates: canvas-size fails too, and so
-    // does camera-region (through a camera, acetate_canvas is the output's size).
-    {"off_canvas_light", {"finite", "canvas-size", "camera-region"}, {}, false, off_canvas_light},
+    // do camera-region and camera-scale (through a camera, acetate_canvas is the output's size).
+    {"off_canvas_light",
+     {"finite", "canvas-size", "camera-region", "camera-scale"},
+     {},
+     false,
+     off_canvas_light},
     {"tiny_radius", {"finite"}, {}, false, tiny_radius},
     {"huge_radius", {"finite"}, {}, false, huge_radius},
     {"full_mask", {"finite"}, {}, false, full_mask},
@@ -430,7 +434,11 @@ const std::vector<Expectation> kPlugins = {
      false,
      canvas_fraction_falloff},
     {"half_float_positions", {"format-agreement"}, {}, false, half_float_positions},
-    {"camera_blind", {"camera-region"}, {}, false, camera_blind},
+    // Its pool, placed by render pixels, lands elsewhere at scale 1/2 too (camera-scale).
+    {"camera_blind", {"camera-region", "camera-scale"}, {}, false, camera_blind},
+    {"scale_blind", {"camera-scale"}, {}, false, scale_blind},
+    // Its control: the same darkening with the offsets scaled, and the same tolerance.
+    {"scale_aware", {}, {}},
     // One plugin per rule the harness gained.
     {"negative_colour", {"non-negative"}, {}, false, negative_colour},
     {"build_leak", {"memory"}, {}, false, build_leak},

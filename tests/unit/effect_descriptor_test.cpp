@@ -4,9 +4,11 @@
 
 #include "plugins/effect_descriptor.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -57,6 +59,30 @@ TEST(EffectDescriptor, APluginBuiltForANewerMinorIsRefusedNamingBothVersions) {
     fake.d.abi_minor = ACETATE_ABI_MINOR + 1;
     EXPECT_EQ(refusal(fake.copy()),
               "fake.so: built for Acetate ABI 1.3; this host supports ABI 1.2");
+}
+
+// scale_tolerance is read when the descriptor reaches it, bounded, and 0 for a descriptor
+// that ends before it (one built before the field, with whatever lies past its end).
+TEST(EffectDescriptor, AScaleToleranceIsReadWhenPresentAndBounded) {
+    Descriptor fake;
+    fake.d.scale_tolerance = 0.25f;
+    auto copied = fake.copy();
+    ASSERT_TRUE(copied) << copied.error().message;
+    EXPECT_EQ(copied.value().scale_tolerance, 0.25f);
+
+    for (const float bad : {-0.5f, 4.5f, NAN, INFINITY}) {
+        fake.d.scale_tolerance = bad;
+        EXPECT_EQ(refusal(fake.copy()),
+                  fmt::format("fake.so: descriptor: scale_tolerance {} is not a number from 0 "
+                              "to 4",
+                              bad));
+    }
+    fake.d.scale_tolerance = 0.25f;
+
+    fake.d.struct_size = offsetof(AcetateEffectDescriptor, scale_tolerance);
+    copied = fake.copy();
+    ASSERT_TRUE(copied) << copied.error().message;
+    EXPECT_EQ(copied.value().scale_tolerance, 0.0f);
 }
 
 // A plugin built against 1.0 has the shorter descriptor: accepted as minor 0, and nothing past

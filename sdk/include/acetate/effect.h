@@ -40,7 +40,8 @@
  * Lengths a plugin gives the host stay in scene pixels: lights, floor data rects of instanced
  * quads, the declared reach, coverage bounds, read_mask's image. A host renders a plugin built
  * against 1.0 or 1.1 only at the whole canvas and scale 1 (it refuses another camera, naming
- * the plugin), where every 1.2 field has the value that makes it read as before.
+ * the plugin), where every 1.2 field has the value that makes it read as before. A descriptor
+ * may declare how far a render at another scale may stray (scale_tolerance).
  *
  * One way to do each thing. Where 1.1 added a fuller form of a 1.0 function, new code uses the
  * fuller one and the older stays only for plugins built before it: declare_target_info, not
@@ -207,6 +208,15 @@ typedef struct AcetateEffectDescriptor {
     /* ---- 1.1 (read only when struct_size covers them) ---- */
     uint32_t abi_minor;                       /* ACETATE_ABI_MINOR the plugin was built against */
     const AcetateParamExt* const* param_exts; /* NULL, or param_count pointers (each may be NULL) */
+    /* ---- 1.2 (read only when struct_size covers it; 0 for a descriptor that ends before) ---- */
+    /* How far a render at another scale may stray from the render at scale 1, as a fraction of
+     * the largest value there. At scale 1/2 each pixel, channel by channel, must lie within the
+     * range the scale-1 render takes over the scene pixels it covers and one around them,
+     * widened by this fraction of that range's largest magnitude (the harness's camera-scale
+     * relation, docs/harness.md). 0 for an effect whose output is a function of the scene
+     * position and the pixels there; one that gathers around a pixel (refraction) or draws
+     * shapes smaller than a pixel (sparks) needs more. Finite, 0 to 4. */
+    float scale_tolerance;
 } AcetateEffectDescriptor;
 
 /* A point light of the scene, in scene pixels (origin top-left, y down), linear colour.

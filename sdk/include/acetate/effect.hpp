@@ -59,6 +59,9 @@ struct EffectInfo {
     std::vector<std::string> masks;
     std::vector<Param> params;
     std::vector<Preset> presets;
+    // 1.2: how far a render at another scale may stray, a fraction of the largest value there
+    // (AcetateEffectDescriptor's scale_tolerance; docs/plugin-guide.md, "Cameras").
+    float scale_tolerance = 0;
 };
 
 struct Pass {
@@ -420,7 +423,8 @@ class Registration {
                        uint32_t(presets_.size()),
                        ACETATE_SOURCE_DIGEST,
                        ACETATE_ABI_MINOR,
-                       ext_pointers_.empty() ? nullptr : ext_pointers_.data()};
+                       ext_pointers_.empty() ? nullptr : ext_pointers_.data(),
+                       info_.scale_tolerance};
         api_ = {sizeof(AcetateEffectApi), &descriptor_, nullptr, nullptr};
     }
     const Effect& effect() const { return *effect_; }
