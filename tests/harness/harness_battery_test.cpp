@@ -362,7 +362,9 @@ const std::vector<Expectation> kPlugins = {
     // in the RGBA16F target while their colour, 1000 times larger, does not: `premultiplied`
     // scales its tolerance by the input's colour-to-alpha ratio so that this passes.
     {"expanding_glow", {}, {}},
-    {"colour_at_zero", {"premultiplied"}, {}, false, colour_at_zero},
+    // Its red at alpha 0 is in the whole render's range where a pixel at scale 1/2, whose
+    // averaged alpha is above 0, has the input's colour: camera-scale fails there too.
+    {"colour_at_zero", {"premultiplied", "camera-scale"}, {}, false, colour_at_zero},
     {"alpha_half_step", {"coverage"}, {}, false, alpha_half_step},
     {"nan_pixel", {"finite"}, {}, false, nan_pixel},
     // State isolation is not judged for a plugin that is not deterministic (validate.cpp).
@@ -391,7 +393,12 @@ const std::vector<Expectation> kPlugins = {
     // One plugin per dimension of the input model, each caught in that dimension's cases only.
     // A lens centred on the canvas: a floor effect measuring in fractions of the canvas, which
     // rule 8 forbids too (canvas-size); the NaN is its input-model evidence.
-    {"odd_width_even_height", {"finite", "canvas-size"}, {}, false, odd_width_even_height},
+    // Its centre is the output's, so at scale 1/2 the lens moves (camera-scale).
+    {"odd_width_even_height",
+     {"finite", "canvas-size", "camera-scale"},
+     {},
+     false,
+     odd_width_even_height},
     {"high_floor_index", {"finite"}, {}, false, high_floor_index},
     {"no_lights", {"finite"}, {}, false, no_lights},
     {"many_lights", {"load"}, {}, false, many_lights},
@@ -445,15 +452,17 @@ const std::vector<Expectation> kPlugins = {
     // Caught through the poison, whose kind (NaN or finite) decides the check; run-1 and run-2
     // have different poisons, so determinism fails too. State isolation renders in one process,
     // with one poison, and passes.
+    // The poison it leaves is in the whole render's range at scale 1/2 too (camera-scale).
     {"result_partly_unwritten",
-     {"finite", "coverage", "determinism"},
+     {"finite", "coverage", "determinism", "camera-scale"},
      {},
      false,
      result_partly_unwritten},
     {"hidden_nan", {"undefined-results"}, {}, false, undefined_everywhere},
     {"inverted_smoothstep", {"undefined-results"}, {}, false, undefined_everywhere},
     {"undefined_at_max", {"undefined-results"}, {}, false, undefined_away_from_defaults},
-    {"unclamped_fetch", {"undefined-results"}, {}, false, undefined_everywhere},
+    // Its neighbour is one texel away, two scene pixels at scale 1/2: a length in texels too.
+    {"unclamped_fetch", {"undefined-results", "camera-scale"}, {}, false, undefined_everywhere},
     // ABI 1.1: a declared reach is checked against the same floor shaded over the whole canvas.
     {"declared_reach", {}, {}, false, reach_checked},
     {"short_reach", {"reach"}, {}, false, reach_cut_off},

@@ -28,8 +28,9 @@ float water(vec2 corner) {
 void main() {
     vec4 prev = texelFetch(previous, ivec2(gl_FragCoord.xy), 0);
     vec2 p = gl_FragCoord.xy;
-    float m = 0.25 * (water(p + vec2(-0.5, -0.5)) + water(p + vec2(0.5, -0.5)) +
-                      water(p + vec2(-0.5, 0.5)) + water(p + vec2(0.5, 0.5)));
+    float h = 0.5 * acetate_view_scale;  // half a scene pixel
+    float m = 0.25 * (water(p + vec2(-h, -h)) + water(p + vec2(h, -h)) + water(p + vec2(-h, h)) +
+                      water(p + vec2(h, h)));
     float depth = -log(1.0 - m);  // infinite where the water is full
     float wet = depth / (1.0 + depth);
     out_color = vec4(prev.rgb * (1.0 - 0.3 * wet), prev.a);
