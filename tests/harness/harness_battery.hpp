@@ -30,11 +30,12 @@ using harness::Verdict;
 using nlohmann::json;
 using test::shell_quote;
 
-// Seconds a case may take: a case needs 1 to 5 s here, more when the machine is busy, so the
-// limit leaves room. hangs_at_max's cases at iterations = 8 are killed at the shorter limit
-// (it is what those cases cost), which still leaves its other cases five times what they need.
+// Seconds of CPU time a case may take: a case needs 0.3 to 2 s here (the limit counts the
+// child's CPU time, so a busy machine does not use it up), and the limit leaves room.
+// hangs_at_max's cases at iterations = 8 are killed at the shorter limit (twice each: it is what
+// those cases cost), which still leaves its other cases ten times what they need.
 inline constexpr int kTimeoutSeconds = 30;
-inline constexpr int kHangTimeoutSeconds = 10;
+inline constexpr int kHangTimeoutSeconds = 4;
 
 // A verdict from the report; a test failure (and FAIL) for an unknown name.
 inline Verdict verdict_of(const json& j) {

@@ -12,25 +12,26 @@ set -u
 scripts=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../scripts" && pwd)
 cd "${1:?usage: include_layers_test.sh SOURCE_DIR}" || exit 2
 
-# The layer of a file, by its folder.
+# The layer of a file, by its folder, into $layer. Everything in this loop is a bash builtin:
+# a subprocess per include line (sed, realpath, a $(...) subshell) made the test take a minute.
 layer_of() {
   case "$1" in
-    sdk/*) echo sdk ;;
-    host/core/*) echo core ;;
-    registry/*) echo registry ;;
-    host/vulkan/*) echo vulkan ;;
-    host/scene/*) echo scene ;;
-    host/plugins/*) echo loader ;;
-    host/render/*) echo render ;;
-    host/include/*) echo host-api ;;
-    host/api/*) echo api ;;
-    compare/*) echo compare ;;
-    harness/*) echo harness ;;
-    bench/*) echo bench ;;
-    apps/*) echo apps ;;
-    examples/embedding-host/*) echo embedder ;;
-    plugins/* | examples/*) echo plugin ;;
-    *) echo unchecked ;;  # tests, fuzz, benchmarks: at the top, may use anything
+    sdk/*) layer=sdk ;;
+    host/core/*) layer=core ;;
+    registry/*) layer=registry ;;
+    host/vulkan/*) layer=vulkan ;;
+    host/scene/*) layer=scene ;;
+    host/plugins/*) layer=loader ;;
+    host/render/*) layer=render ;;
+    host/include/*) layer=host-api ;;
+    host/api/*) layer=api ;;
+    compare/*) layer=compare ;;
+    harness/*) layer=harness ;;
+    bench/*) layer=bench ;;
+    apps/*) layer=apps ;;
+    examples/embedding-host/*) layer=embedder ;;
+    plugins/* | examples/*) layer=plugin ;;
+    *) layer=unchecked ;;  # tests, fuzz, benchmarks: at the top, may use anything
   esac
 }
 
@@ -64,12 +65,30 @@ fail() {
   failures=$((failures + 1))
 }
 
+# A relative path with its "." and ".." folders resolved, into $normal ("a/b/../c" -> "a/c").
+normalize() {
+  local -a out=() parts=()
+  local part IFS=/
+  read -ra parts <<<"$1"
+  for part in "${parts[@]}"; do
+    case "$part" in
+      "" | .) ;;
+      ..) ((${#out[@]})) && unset 'out[${#out[@]}-1]' || out+=(..) ;;
+      *) out+=("$part") ;;
+    esac
+  done
+  normal="${out[*]}"
+}
+
+include_pattern='^[[:space:]]*#[[:space:]]*include[[:space:]]*["<]([^">]+)[">]'
 while IFS= read -r file; do
-  from=$(layer_of "$file")
+  layer_of "$file"
+  from=$layer
   [ "$from" = unchecked ] && continue
-  dir=$(dirname "$file")
+  dir=${file%/*}
   while IFS= read -r line; do
-    name=$(sed -E 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*["<]([^">]+)[">].*/\1/' <<<"$line")
+    [[ "$line" =~ $include_pattern ]] || continue
+    name=${BASH_REMATCH[1]}
     if [[ "$line" =~ \< ]]; then
       if [[ "$name" == vulkan/* && "$no_vulkan" == *" $from "* ]]; then
         fail "$file includes <$name>, but $from includes no Vulkan header"
@@ -80,7 +99,8 @@ while IFS= read -r file; do
     fi
     target=""
     if [ -f "$dir/$name" ]; then
-      target=$(realpath -m --relative-to=. "$dir/$name")
+      normalize "$dir/$name"
+      target=$normal
     else
       for root in "${roots[@]}"; do
         if [ -f "$root/$name" ]; then
@@ -90,7 +110,8 @@ while IFS= read -r file; do
       done
     fi
     [ -z "$target" ] && continue  # a system or generated header
-    to=$(layer_of "$target")
+    layer_of "$target"
+    to=$layer
     [ "$to" = "$from" ] && continue
     if [[ " ${may_use[$from]} " != *" $to "* ]]; then
       fail "$file includes \"$name\" ($to), which $from may not use (it may use: ${may_use[$from]:-nothing else})"
