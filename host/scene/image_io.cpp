@@ -16,6 +16,7 @@
 #include "core/input_file.hpp"
 #include "core/stderr_capture.hpp"
 #include "scene/exr_header_check.hpp"
+#include "scene/png_chunk_check.hpp"
 
 namespace acetate {
 namespace {
@@ -214,6 +215,7 @@ Result<ImageRGBA> load_image(const fs::path& file, ImageRole role) {
     auto bytes = read_input_file(file, kMaxImageFileBytes, "an image");
     if (!bytes) return bytes.error();
     ACETATE_TRY(check_exr_header(bytes.value(), file, kMaxImageSide));
+    ACETATE_TRY(check_png_chunks(bytes.value(), file));
     OIIO::Filesystem::IOMemReader memory(bytes->data(), bytes->size());
     // libpng and others print raw lines of their own before failing; the failure is reported
     // below in one line, so what they printed is dropped then, and passed on as one line when
