@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -17,13 +18,15 @@ uint32_t big_endian_u32(const char* p) {
     return v;
 }
 
-// A chunk type as it can appear in a one-line message (a damaged file's bytes as \xNN).
-std::string printable(std::string_view type) {
-    std::string out;
-    for (unsigned char c : type)
-        out += c >= 0x20 && c < 0x7f && c != '\'' ? std::string(1, char(c))
-                                                  : fmt::format("\\x{:02x}", c);
-    return out;
+// A chunk's type for a one-line message: PNG types are four ASCII letters, quoted; a damaged
+// one is written as its four bytes in hex.
+std::string chunk_name(std::string_view type) {
+    const bool letters = std::all_of(type.begin(), type.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+    });
+    if (letters) return "'" + std::string(type) + "'";
+    return fmt::format("0x{:02x}{:02x}{:02x}{:02x}", uint8_t(type[0]), uint8_t(type[1]),
+                       uint8_t(type[2]), uint8_t(type[3]));
 }
 
 }  // namespace
@@ -40,9 +43,9 @@ Result<void> check_png_chunks(std::string_view bytes, const std::filesystem::pat
         const size_t left = bytes.size() - at - 8;
         if (uint64_t(length) + 4 > left)
             return make_error(ErrorCode::ImageDecode,
-                              fmt::format("{}: PNG chunk '{}' at byte {} declares {} bytes of "
+                              fmt::format("{}: PNG chunk {} at byte {} declares {} bytes of "
                                           "data, but the file has {} left after its header",
-                                          file.string(), printable(type), at, length, left));
+                                          file.string(), chunk_name(type), at, length, left));
         if (type == "IEND") return {};
         at += 12 + size_t(length);
     }
