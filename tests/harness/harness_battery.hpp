@@ -33,7 +33,7 @@ using test::shell_quote;
 // Seconds of CPU time a case may take: a case needs 0.3 to 2 s here (the limit counts the
 // child's CPU time, so a busy machine does not use it up), and the limit leaves room.
 // hangs_at_max's cases at iterations = 8 are killed at the shorter limit (twice each: it is what
-// those cases cost), which still leaves its other cases ten times what they need.
+// those cases cost), which still leaves its other cases twice what the slowest needs.
 inline constexpr int kTimeoutSeconds = 30;
 inline constexpr int kHangTimeoutSeconds = 4;
 
