@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "case_kinds.hpp"
 #include "case_runner.hpp"
 #include "core/atomic_file.hpp"
 #include "core/child_process.hpp"
@@ -30,10 +31,9 @@ Result<json> read_json(const fs::path& file) {
 
 // What a case's child left, as a result: its own result.json, or CRASH / TIMEOUT / FAIL with
 // the cause. Id, seed and the other fields of the case are the caller's.
-CaseResult case_result(const ChildJob& job, const fs::path& directory,
-                       const ChildOutcome& outcome) {
+CaseResult case_result(const fs::path& directory, const ChildOutcome& outcome) {
     CaseResult result;
-    const std::string log = tail_of_file(job.log, 4000);
+    const std::string log = tail_of_file(case_log_file(directory), 4000);
     result.log = log;
     // The child writes result.json last, just before it returns 0: a status 0 without it is
     // the plugin's exit(0), handled with the other exits below.
@@ -110,46 +110,73 @@ std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpe
     return run_case_batch(run, cases, folders);
 }
 
+std::vector<std::vector<size_t>> group_cases(const std::vector<CaseSpec>& cases,
+                                             unsigned per_process, unsigned jobs) {
+    // At least four processes a job where there are cases enough.
+    const size_t per_job = (cases.size() + size_t(jobs) * 4 - 1) / (size_t(std::max(jobs, 1u)) * 4);
+    const size_t size = std::clamp<size_t>(per_job, 1, std::max(per_process, 1u));
+    std::vector<std::vector<size_t>> groups;
+    bool open = false;  // the last group takes more cases
+    for (size_t i = 0; i < cases.size(); ++i) {
+        const bool alone = !cases[i].validation_layer || case_kind_info(cases[i].kind).own_process;
+        if (alone || !open || groups.back().size() >= size) groups.emplace_back();
+        groups.back().push_back(i);
+        open = !alone;
+    }
+    return groups;
+}
+
 std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpec>& cases,
                                        const std::vector<std::string>& folders) {
     const CaseBatch& o = run;
-    std::vector<ChildJob> jobs;
-    std::vector<fs::path> directories;
-    for (size_t c = 0; c < cases.size(); ++c) {
-        const CaseSpec& spec = cases[c];
-        const fs::path dir = o.report_directory / "cases" / folders.at(c);
+    std::vector<fs::path> directories, spec_files;
+    // A case's folder, empty but for its case.json (again before a case runs alone).
+    auto prepare = [&](size_t c) {
         std::error_code ec;
-        fs::remove_all(dir, ec);
-        fs::create_directories(dir, ec);
-        const fs::path spec_file = dir / "case.json";
-        (void)write_file_atomically(spec_file, to_json(spec).dump(2));
+        fs::remove_all(directories[c], ec);
+        fs::create_directories(directories[c], ec);
+        (void)write_file_atomically(spec_files[c], to_json(cases[c]).dump(2));
+    };
+    for (size_t c = 0; c < cases.size(); ++c) {
+        directories.push_back(o.report_directory / "cases" / folders.at(c));
+        spec_files.push_back(directories.back() / "case.json");
+        prepare(c);
+    }
+    // The child that runs `group`, in order, in one process.
+    auto job_for = [&](const std::vector<size_t>& group) {
         ChildJob job;
         job.argv = {o.self.string(), "run-case",
                     "--plugin-info", o.plugin_info_file.string(),
-                    "--case",        spec_file.string(),
-                    "--out",         dir.string(),
                     "--report",      o.report_directory.string()};
-        job.log = dir / "log.txt";
+        for (size_t c : group)
+            for (const std::string& arg : {std::string("--case"), spec_files[c].string(),
+                                           std::string("--out"), directories[c].string()})
+                job.argv.push_back(arg);
+        job.log = case_log_file(directories[group.front()]);
+        // A process is given one case's limit: a hang is found as soon as alone, and the
+        // cases a process did not finish in it run again alone with the limit each.
         job.timeout = std::chrono::milliseconds(int64_t(o.timeout_seconds * 1000));
-        job.fresh_process = !spec.validation_layer;  // the server loaded the layer
-        jobs.push_back(job);
-        directories.push_back(dir);
-    }
+        job.fresh_process = !cases[group.front()].validation_layer;  // the server loaded the layer
+        return job;
+    };
+    const std::vector<std::vector<size_t>> groups = group_cases(cases, o.cases_per_process, o.jobs);
+    std::vector<ChildJob> group_jobs;
+    for (const auto& group : groups) group_jobs.push_back(job_for(group));
     std::vector<CaseResult> results(cases.size());
     // Each case's child forked from one server instead of started anew (core/fork_server.hpp):
     // the same fresh process for a fraction of the start-up. ACETATE_FORK_SERVER=0 spawns each
     // child instead (to compare, or to rule the server out).
     std::unique_ptr<ForkServer> server;
-    if (o.fork_server && cases.size() > 1) {
+    if (o.fork_server && groups.size() > 1) {
         std::string error;
         server = ForkServer::start({o.self.string(), kForkServerCommand}, error);
     }
     // A case killed at the time limit runs once more, alone in a fresh process, before its
     // TIMEOUT counts: the limit counts CPU time (core/child_process.hpp), and a second run
     // tells a plugin that hangs from a case that was starved by something else.
-    std::vector<size_t> timed_out;
-    std::vector<std::string> first_timeouts(cases.size());
-    auto finish = [&](size_t i, const ChildOutcome& outcome, bool retried) {
+    std::vector<size_t> timed_out, alone;
+    std::vector<std::string> first_timeouts(cases.size()), shared_ends(cases.size());
+    auto finish = [&](size_t i, const ChildOutcome& outcome, bool retried, bool grouped) {
         if (outcome.timed_out && !retried) {
             timed_out.push_back(i);
             first_timeouts[i] = outcome.message;
@@ -158,18 +185,21 @@ std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpe
                             outcome.message.c_str());
             return;
         }
-        CaseResult result = case_result(jobs[i], directories[i], outcome);
+        CaseResult result = case_result(directories[i], outcome);
         if (retried && outcome.timed_out)
             result.message += "; the same when run once more in a fresh process";
         else if (retried)
             result.message = fmt::format(
                 "{}{}timed out once ({}), then finished when run once more in a fresh process",
                 result.message, result.message.empty() ? "" : "; ", first_timeouts[i]);
+        if (!shared_ends[i].empty() && result.verdict < Verdict::Fail)
+            result.message = fmt::format("{}{}{}; run alone, it finished", result.message,
+                                         result.message.empty() ? "" : "; ", shared_ends[i]);
         result.id = cases[i].id;
         result.description = cases[i].description;
         result.seed = cases[i].seed;
         result.inputs = cases[i].inputs;
-        result.seconds = outcome.seconds;
+        if (!grouped) result.seconds = outcome.seconds;  // else the child's count for the case
         result.reproduce = o.reproduce ? o.reproduce(cases[i]) : std::string();
         ++run.done;
         if (!o.quiet)
@@ -180,17 +210,50 @@ std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpe
         results[i] = std::move(result);
         if (o.on_result) o.on_result(i, results[i]);
     };
-    run_children(
-        jobs, o.jobs, [&](size_t i, const ChildOutcome& outcome) { finish(i, outcome, false); },
-        server.get());
-    if (!timed_out.empty()) {
+    // A process of several cases: those it finished are done; the one it was running when it
+    // ended otherwise than by exiting cleanly, and every case after it, run again alone (so a
+    // crash or hang is the case's own, judged as any single case is). After a clean exit with
+    // every result written, nothing is left.
+    auto finish_group = [&](size_t g, const ChildOutcome& outcome) {
+        const std::vector<size_t>& group = groups[g];
+        if (group.size() == 1) return finish(group.front(), outcome, false, false);
+        const bool clean = outcome.started && !outcome.timed_out && outcome.exit_code == 0;
+        size_t k = 0;
+        std::error_code ec;
+        while (k < group.size() && fs::exists(case_result_file(directories[group[k]]), ec)) ++k;
+        // After an unclean end the last result may be the one a dying process wrote.
+        if (!clean && k == group.size()) --k;
+        for (size_t j = 0; j < k; ++j) {
+            ChildOutcome done = outcome;
+            done.timed_out = false, done.exit_code = 0, done.signal = 0;
+            finish(group[j], done, false, true);
+        }
+        for (size_t j = k; j < group.size(); ++j) {
+            if (j == k && !clean)
+                shared_ends[group[j]] = fmt::format(
+                    "its process, shared with {} other case{}, ended while running it ({})",
+                    group.size() - 1, group.size() == 2 ? "" : "s", outcome.message);
+            alone.push_back(group[j]);
+        }
+    };
+    run_children(group_jobs, o.jobs, finish_group, server.get());
+    // Cases run again, each in a process of its own, `parallel` at a time.
+    auto run_alone = [&](const std::vector<size_t>& which, unsigned parallel, bool retried) {
         std::vector<ChildJob> again;
-        for (size_t i : timed_out) again.push_back(jobs[i]);
+        for (size_t i : which) {
+            prepare(i);
+            again.push_back(job_for({i}));
+        }
         run_children(
-            again, 1,
-            [&](size_t k, const ChildOutcome& outcome) { finish(timed_out[k], outcome, true); },
+            again, parallel,
+            [&](size_t k, const ChildOutcome& outcome) {
+                finish(which[k], outcome, retried, false);
+            },
             server.get());
-    }
+    };
+    if (!alone.empty()) run_alone(alone, o.jobs, false);
+    // After `alone`: a case it ran may have timed out once.
+    if (!timed_out.empty()) run_alone(timed_out, 1, true);
     return results;
 }
 

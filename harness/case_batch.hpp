@@ -24,6 +24,8 @@ bool fork_server_wanted();
 // relocated. Measured on lighting's validation: half the children's CPU time.
 bool prepare_case_children(std::string& error);
 
+inline constexpr unsigned kDefaultCasesPerProcess = 8;
+
 struct CaseBatch {
     std::filesystem::path self;              // acetate-harness, started as `run-case`
     std::filesystem::path plugin_info_file;  // what `describe` wrote
@@ -40,6 +42,11 @@ struct CaseBatch {
     // Fork each case's child from a server started once (core/fork_server.hpp); false when the
     // environment says ACETATE_FORK_SERVER=0.
     bool fork_server = fork_server_wanted();
+    // Cases run one after another in one child process, on one device (case_runner.hpp): the
+    // child's start and the device's opening, about half of a short case, are paid once for
+    // them. 1 gives every case a process of its own. Cases that need one are alone whatever
+    // this says (group_cases).
+    unsigned cases_per_process = kDefaultCasesPerProcess;
     size_t done = 0, total = 0;  // progress: "[done/total]"
 };
 
@@ -49,6 +56,14 @@ std::vector<CaseResult> run_case_batch(CaseBatch& batch, const std::vector<CaseS
 // The same, case i in the folder cases/<folders[i]> (a repeated case needs one per run).
 std::vector<CaseResult> run_case_batch(CaseBatch& batch, const std::vector<CaseSpec>& cases,
                                        const std::vector<std::string>& folders);
+
+// Which cases share a child process, as positions in `cases`, in order: runs of consecutive
+// cases, each at most `per_process` long and short enough that every job gets several (a long
+// last process would leave the other cores idle). A case that must start a process of its own
+// is alone: one run without the validation layer, or one of a kind that judges the process
+// itself (CaseKindInfo::own_process).
+std::vector<std::vector<size_t>> group_cases(const std::vector<CaseSpec>& cases,
+                                             unsigned per_process, unsigned jobs);
 
 // A case's folder name under cases/: its id with every character but letters, digits and '-'
 // turned into '_'.

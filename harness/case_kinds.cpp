@@ -17,11 +17,11 @@ constexpr std::array kCaseKinds = {
     CaseKindInfo{CaseKind::Determinism, "determinism", ValidationStage::AlphaTested,
                  "renders one scene twice in each of three processes, one after other scenes; "
                  "every frame must give the same bytes",
-                 plan_determinism, run_determinism},
+                 plan_determinism, run_determinism, /*own_process=*/true},
     CaseKindInfo{CaseKind::StateIsolation, "state-isolation", ValidationStage::AlphaTested,
                  "floors 0, 1, 0, each floor alone and a second load must agree; then many "
                  "floor switches and loads for memory growth",
-                 plan_state_isolation, run_state_isolation},
+                 plan_state_isolation, run_state_isolation, /*own_process=*/true},
     CaseKindInfo{CaseKind::FloorIsolation, "floor-isolation", ValidationStage::AlphaTested,
                  "the composite with and without the effect on floor 1 of 3, compared where "
                  "that floor covers nothing (floor effects)",
@@ -61,11 +61,11 @@ const char* to_string(CaseKind kind) {
 }
 
 std::string harness_case_kinds_table() {
-    std::string table = "| kind | stage | what a case does |\n|---|---|---|\n";
+    std::string table = "| kind | stage | process | what a case does |\n|---|---|---|---|\n";
     for (const CaseKindInfo& k : kCaseKinds)
-        table += fmt::format("| `{}` | {} | {} |\n", k.name,
+        table += fmt::format("| `{}` | {} | {} | {} |\n", k.name,
                              k.stage == ValidationStage::Integrated ? "integrated" : "alpha-tested",
-                             k.summary);
+                             k.own_process ? "its own" : "shared", k.summary);
     return table;
 }
 

@@ -23,6 +23,10 @@ struct CaseKindInfo {
     std::string_view summary;  // what a case of this kind does (Markdown, one line)
     void (*plan)(const PlanContext& context, Planner& planner);
     Result<void> (*run)(const CaseContext& c, Session& s, CaseWriter& w);
+    // Its case starts a child process of its own instead of following other cases in one
+    // (case_batch.hpp): it judges the process itself (the same bytes in three processes,
+    // memory growth), which the cases before it would change.
+    bool own_process = false;
 };
 
 // In the order a run lists their cases.

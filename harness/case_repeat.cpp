@@ -36,6 +36,10 @@ std::vector<CaseResult> run_repeated(CaseBatch& batch, const std::vector<CaseSpe
     std::vector<std::vector<CaseResult>> by_case(cases.size(), std::vector<CaseResult>(runs));
     std::vector<unsigned> finished(cases.size(), 0);
     auto on_case = std::exchange(batch.on_result, {});
+    // Repeated, each run has a process of its own: a verdict that changes is the plugin's, not
+    // that of the cases before it in a shared process.
+    const unsigned per_process =
+        std::exchange(batch.cases_per_process, runs > 1 ? 1u : batch.cases_per_process);
     batch.on_result = [&](size_t j, const CaseResult& result) {
         const Slot& slot = order[j];
         by_case[slot.case_index][slot.run] = result;
@@ -44,6 +48,7 @@ std::vector<CaseResult> run_repeated(CaseBatch& batch, const std::vector<CaseSpe
     };
     run_case_batch(batch, specs, folders);
     batch.on_result = std::move(on_case);
+    batch.cases_per_process = per_process;
     std::vector<CaseResult> merged;
     for (std::vector<CaseResult>& case_runs : by_case)
         merged.push_back(merge_runs(std::move(case_runs)));

@@ -17,9 +17,14 @@ namespace acetate::harness {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+namespace {
+// The session's renderer, on its device; `links` holds the files under test.
+Result<Session> with_renderer(const CaseContext& c, const fs::path& links, Session session);
+}  // namespace
+
 // The plugin under test may have any file name; scenes name plugins by id. A private folder
 // of `<id>.so` links makes the ordinary search find exactly the files under test.
-Result<Session> open_session(const CaseContext& c) {
+Result<Session> open_session(const CaseContext& c, std::unique_ptr<VulkanContext> device) {
     const fs::path links = c.case_directory / "plugins";
     std::error_code ec;
     fs::create_directories(links, ec);
@@ -36,6 +41,10 @@ Result<Session> open_session(const CaseContext& c) {
     for (const CompanionPlugin& other : c.spec.companions) ACETATE_TRY(link(other.id, other.file));
 
     Session session;
+    if (device) {
+        session.context = std::move(device);
+        return with_renderer(c, links, std::move(session));
+    }
     ContextOptions context_options = ContextOptions::from_environment();
     if (!c.spec.validation_layer) {
         // As users run their hosts: the layer must not be in the process at all, since a
@@ -53,6 +62,11 @@ Result<Session> open_session(const CaseContext& c) {
     // user's host gives it, without the harness's switch: a plugin that reads it could
     // otherwise behave only while it is watched.
     ::unsetenv("ACETATE_VALIDATION");
+    return with_renderer(c, links, std::move(session));
+}
+
+namespace {
+Result<Session> with_renderer(const CaseContext& c, const fs::path& links, Session session) {
     RendererOptions options;
     options.plugin_directories = {links};
     options.pipeline_cache_file = default_pipeline_cache_path();
@@ -84,6 +98,7 @@ Result<Session> open_session(const CaseContext& c) {
     });
     return session;
 }
+}  // namespace
 
 namespace {
 
@@ -303,10 +318,10 @@ void CaseWriter::add_all(std::vector<CheckResult> checks,
         add(std::move(check), it == heat.end() ? nullptr : &it->second);
     }
 }
-CaseResult CaseWriter::finish(bool validation_layer_on) {
+CaseResult CaseWriter::finish(bool validation_layer_on, uint64_t messages_before) {
     CheckResult validation;
     validation.check = "vulkan-validation";
-    const uint64_t messages = VulkanContext::process_validation_message_count();
+    const uint64_t messages = VulkanContext::process_validation_message_count() - messages_before;
     if (!c_.spec.validation_layer) {
         // Run as users run their hosts; the layer's findings on these inputs come from the
         // same case with the layer (determinism/run-1).

@@ -24,8 +24,9 @@ struct Session {
     std::unique_ptr<Renderer> renderer;
 };
 
-// Opens the device and a renderer whose plugin search finds exactly the files under test.
-Result<Session> open_session(const CaseContext& c);
+// A renderer whose plugin search finds exactly the files under test, on `device` (the device of
+// the cases before it in this process), or on a device it opens when given none.
+Result<Session> open_session(const CaseContext& c, std::unique_ptr<VulkanContext> device = nullptr);
 
 // ---- scenes -----------------------------------------------------------------------------
 
@@ -74,8 +75,10 @@ class CaseWriter {
     void add_all(std::vector<CheckResult> checks,
                  const std::map<std::string, std::map<int64_t, ImageRGBA>>& heat);
     // Adds the vulkan-validation check (SKIP when the layer was off in this process; none in a
-    // case run without the layer on purpose) and sets the case's verdict.
-    CaseResult finish(bool validation_layer_on);
+    // case run without the layer on purpose) and sets the case's verdict. The process had
+    // `messages_before` validation messages when the case began (the cases before it in the
+    // same process had theirs).
+    CaseResult finish(bool validation_layer_on, uint64_t messages_before);
     CaseResult result;
 
   private:

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "case_batch.hpp"
 #include "case_spec.hpp"
 #include "core/result.hpp"
 #include "registry.hpp"
@@ -40,8 +41,11 @@ struct ValidateOptions {
     std::optional<std::filesystem::path> junit_file;  // --junit: JUnit XML for CI
     unsigned jobs = 2;
     double timeout_seconds = 120;
-    std::vector<std::string> only_cases;   // --case: run just these (no evidence is recorded)
-    unsigned repeat = 1;                   // --repeat: runs per case, each in a fresh process
+    std::vector<std::string> only_cases;  // --case: run just these (no evidence is recorded)
+    unsigned repeat = 1;                  // --repeat: runs per case, each in a fresh process
+    // --cases-per-process: cases run one after another in one child (case_batch.hpp); 1 gives
+    // each its own (as --repeat does).
+    unsigned cases_per_process = kDefaultCasesPerProcess;
     std::optional<uint64_t> shuffle_seed;  // --shuffle: run every case's runs in random order
     std::filesystem::path registry;
     std::optional<std::filesystem::path> signoffs;  // committed sign-offs to import

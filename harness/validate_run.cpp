@@ -209,6 +209,7 @@ class ValidationRun {
         batch_.report_directory = o_.report_directory;
         batch_.jobs = o_.jobs;
         batch_.timeout_seconds = o_.timeout_seconds;
+        batch_.cases_per_process = o_.cases_per_process;
         batch_.reproduce = [this](const CaseSpec& spec) { return reproduce_command(o_, spec.id); };
         return {};
     }

@@ -38,8 +38,22 @@ echo "== acetate_unit_tests under ASan (leaks included) + UBSan"
 # The CLI suite runs `acetate` end to end on lavapipe, whose JIT-compiled shaders allocate
 # memory that LeakSanitizer cannot attribute (the stack ends in code with no module), so leaks
 # are not judged there; every memory error and all undefined behaviour still are.
-echo "== acetate_cli_tests under ASan (no leak check) + UBSan"
-ASAN_OPTIONS=${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0} "$build/tests/acetate_cli_tests" --gtest_brief=1
+# Its tests run programs and wait on them, so it runs as one shard per core (gtest's own
+# sharding: every test in exactly one shard); each shard's output is shown when it has ended.
+cli_shards=$(nproc)
+echo "== acetate_cli_tests under ASan (no leak check) + UBSan, $cli_shards shards at once"
+for ((i = 0; i < cli_shards; i++)); do
+  ASAN_OPTIONS=${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0} GTEST_TOTAL_SHARDS=$cli_shards \
+    GTEST_SHARD_INDEX=$i "$build/tests/acetate_cli_tests" --gtest_brief=1 \
+    >"$build/cli-shard-$i.log" 2>&1 &
+done
+cli_status=0
+for ((i = 0; i < cli_shards; i++)); do wait -n || cli_status=1; done
+cat "$build"/cli-shard-*.log
+if [ "$cli_status" -ne 0 ]; then
+  echo "sanitize: acetate_cli_tests failed under the sanitizers (the shards' output is above)" >&2
+  exit 1
+fi
 
 findings=$build/fuzz-findings
 mkdir -p "$findings"

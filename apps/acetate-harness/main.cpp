@@ -100,14 +100,18 @@ int run_describe(const fs::path& plugin, const fs::path& out) {
     return 0;
 }
 
-// Child: one case.
-int run_case_command(const fs::path& plugin_info, const fs::path& case_file, const fs::path& out,
-                     const fs::path& report) {
+// Child: cases, one after another (harness/case_runner.hpp): the i-th --case file's result in
+// the i-th --out folder.
+int run_cases_command(const fs::path& plugin_info, const std::vector<fs::path>& case_files,
+                      const std::vector<fs::path>& outs, const fs::path& report) {
     if (!tie_to_parent()) return kChildSetupFailure;
     auto fail = [](const std::string& message) {
         std::fprintf(stderr, "acetate-harness: %s\n", message.c_str());
         return kChildSetupFailure;
     };
+    if (case_files.size() != outs.size())
+        return fail(fmt::format("run-case: {} --case files but {} --out folders", case_files.size(),
+                                outs.size()));
     auto read = [](const fs::path& file) -> Result<nlohmann::json> {
         return read_json_file(file, kMaxHarnessFileBytes, "a harness file");
     };
@@ -115,14 +119,16 @@ int run_case_command(const fs::path& plugin_info, const fs::path& case_file, con
     if (!info_json) return fail(info_json.error().message);
     auto info = plugin_info_from_json(*info_json, plugin_info.string());
     if (!info) return fail(info.error().message);
-    auto spec_json = read(case_file);
-    if (!spec_json) return fail(spec_json.error().message);
-    auto spec = case_spec_from_json(*spec_json, case_file.string());
-    if (!spec) return fail(spec.error().message);
-    auto result = run_case({info.value(), spec.value(), out, report});
-    if (!result) return fail(result.error().message);
-    auto written = write_file_atomically(case_result_file(out), to_json(result.value()).dump(2));
-    if (!written) return fail(written.error().message);
+    std::vector<CaseContext> cases;
+    for (size_t i = 0; i < case_files.size(); ++i) {
+        auto spec_json = read(case_files[i]);
+        if (!spec_json) return fail(spec_json.error().message);
+        auto spec = case_spec_from_json(*spec_json, case_files[i].string());
+        if (!spec) return fail(spec.error().message);
+        cases.push_back({info.value(), spec.value(), outs[i], report});
+    }
+    auto ran = run_cases(cases);
+    if (!ran) return fail(ran.error().message);
     return 0;
 }
 
@@ -282,6 +288,9 @@ int run_harness(int argc, char** argv) {
     flags::add_number(v, "--repeat", validate.repeat, 1, 1000,
                       "Run every case N times, each in a fresh process; a case whose verdict "
                       "changes is FLAKY");
+    flags::add_number(v, "--cases-per-process", validate.cases_per_process, 1, 64,
+                      "Cases run one after another in one child process, on one device (1: each "
+                      "in its own; --repeat gives each run its own)");
     CLI::Option* shuffle_flag =
         v->add_flag("--shuffle", shuffle, "Run the cases (and their repeats) in random order");
     flags::add_number(v, "--shuffle-seed", validate.shuffle_seed, 0, UINT64_MAX,
@@ -368,11 +377,12 @@ int run_harness(int argc, char** argv) {
     CLI::App* d = app.add_subcommand("describe", "(child) Write what a plugin declares as JSON");
     d->add_option("plugin", describe_plugin_file)->required();
     d->add_option("--out", describe_out)->required();
-    fs::path case_info, case_file, case_out, case_report;
-    CLI::App* c = app.add_subcommand("run-case", "(child) Run one case of a validation");
+    fs::path case_info, case_report;
+    std::vector<fs::path> case_files, case_outs;
+    CLI::App* c = app.add_subcommand("run-case", "(child) Run cases of a validation in order");
     c->add_option("--plugin-info", case_info)->required();
-    c->add_option("--case", case_file)->required();
-    c->add_option("--out", case_out)->required();
+    c->add_option("--case", case_files, "A case's case.json (repeatable)")->required();
+    c->add_option("--out", case_outs, "Its folder, one per --case")->required();
     c->add_option("--report", case_report)->required();
 
     // Options of the whole command (--registry) may also follow the subcommand.
@@ -525,7 +535,7 @@ int run_harness(int argc, char** argv) {
             return run_waive(*info, context, waive);
         }
         if (d->parsed()) return run_describe(describe_plugin_file, describe_out);
-        if (c->parsed()) return run_case_command(case_info, case_file, case_out, case_report);
+        if (c->parsed()) return run_cases_command(case_info, case_files, case_outs, case_report);
     } catch (const std::exception& e) {
         return fail(e.what());
     }

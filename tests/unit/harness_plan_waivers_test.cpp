@@ -1,6 +1,8 @@
 // The harness's pure parts beside the contract checks, directly: the case planner
 // (plan_cases: deterministic for a seed, unique ids, every parameter swept, more cases with more
-// strictness, a case's seed independent of the others) and the waivers (apply_waivers: a waived
+// strictness, a case's seed independent of the others), which cases share a child process
+// (group_cases: in order, each once, the cases that judge the process alone) and the waivers
+// (apply_waivers: a waived
 // FAIL reads WAIVED, an expired waiver fails the run, process failures are never waived). The
 // battery proves the same through whole runs; these name the rule. No device.
 
@@ -10,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "case_batch.hpp"
+#include "case_kinds.hpp"
 #include "case_spec.hpp"
 #include "report_fixtures.hpp"
 #include "waivers.hpp"
@@ -77,6 +81,58 @@ TEST(CasePlan, MoreStrictnessPlansMoreCasesAndAnotherSeedOtherDraws) {
     EXPECT_EQ(case_seed(7, "sizes/1x1"), case_seed(7, "sizes/1x1"));
     EXPECT_NE(case_seed(7, "sizes/1x1"), case_seed(8, "sizes/1x1"));
     EXPECT_NE(case_seed(7, "sizes/1x1"), case_seed(7, "sizes/odd"));
+}
+
+// Every case once, in the plan's order; no process holds more than `per_process`; a case run
+// without the layer, or of a kind that judges its process, holds its process alone.
+void expect_grouping_holds(const std::vector<CaseSpec>& cases,
+                           const std::vector<std::vector<size_t>>& groups, unsigned per_process) {
+    size_t next = 0;
+    for (const auto& group : groups) {
+        ASSERT_FALSE(group.empty());
+        EXPECT_LE(group.size(), per_process);
+        for (size_t i : group) {
+            EXPECT_EQ(i, next) << "out of order or repeated: " << cases.at(i).id;
+            ++next;
+            const bool alone =
+                !cases[i].validation_layer || case_kind_info(cases[i].kind).own_process;
+            if (alone) {
+                EXPECT_EQ(group.size(), 1u) << cases[i].id << " shares its process";
+            }
+        }
+    }
+    EXPECT_EQ(next, cases.size());
+}
+
+TEST(ProcessGroups, CasesShareProcessesInOrderAndThoseJudgingTheProcessAreAlone) {
+    const auto cases = plan_cases(sample_plugin(), 5, 1, true, false, {});
+    const auto groups = group_cases(cases, 8, 2);
+    expect_grouping_holds(cases, groups, 8);
+    // The plan has cases that need a process of their own, and many that share one.
+    size_t alone_by_rule = 0, shared = 0;
+    for (const auto& group : groups) {
+        const CaseSpec& first = cases[group.front()];
+        if (!first.validation_layer || case_kind_info(first.kind).own_process) ++alone_by_rule;
+        if (group.size() > 1) shared += group.size();
+    }
+    EXPECT_GE(alone_by_rule, 4u);  // determinism's three processes, state isolation
+    EXPECT_GT(shared, cases.size() / 2);
+    EXPECT_LT(groups.size(), cases.size() / 2);
+}
+
+TEST(ProcessGroups, OnePerProcessAndFewCasesLeaveEveryCaseAlone) {
+    const auto cases = plan_cases(sample_plugin(), 5, 1, true, false, {});
+    const auto one = group_cases(cases, 1, 2);
+    expect_grouping_holds(cases, one, 1);
+    EXPECT_EQ(one.size(), cases.size());
+    // Eight cases on two jobs: each job gets four processes, so one case each.
+    const std::vector<CaseSpec> few(cases.begin(), cases.begin() + 8);
+    EXPECT_EQ(group_cases(few, 8, 2).size(), 8u);
+    // Sixty-four on two jobs: four processes a job, eight cases each.
+    std::vector<CaseSpec> plain(64);
+    const auto groups = group_cases(plain, 8, 2);
+    expect_grouping_holds(plain, groups, 8);
+    EXPECT_EQ(groups.size(), 8u);
 }
 
 Waiver waiver(std::string check_name, std::string until) {
