@@ -212,8 +212,10 @@ std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpe
     };
     // A process of several cases: those it finished are done; the one it was running when it
     // ended otherwise than by exiting cleanly, and every case after it, run again alone (so a
-    // crash or hang is the case's own, judged as any single case is). After a clean exit with
-    // every result written, nothing is left.
+    // crash or hang is the case's own, judged as any single case is). Killed at the limit, the
+    // case it was running has timed out once, as a single case killed there has: it runs once
+    // more alone before its TIMEOUT counts. After a clean exit with every result written,
+    // nothing is left.
     auto finish_group = [&](size_t g, const ChildOutcome& outcome) {
         const std::vector<size_t>& group = groups[g];
         if (group.size() == 1) return finish(group.front(), outcome, false, false);
@@ -228,11 +230,20 @@ std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpe
             done.timed_out = false, done.exit_code = 0, done.signal = 0;
             finish(group[j], done, false, true);
         }
+        const std::string shared = fmt::format("its process, shared with {} other case{},",
+                                               group.size() - 1, group.size() == 2 ? "" : "s");
         for (size_t j = k; j < group.size(); ++j) {
+            if (j == k && outcome.timed_out) {
+                // The limit, as a single case's first: one more run alone decides.
+                ChildOutcome first = outcome;
+                first.message =
+                    fmt::format("{} ran out of time while running it: {}", shared, outcome.message);
+                finish(group[j], first, false, false);
+                continue;
+            }
             if (j == k && !clean)
-                shared_ends[group[j]] = fmt::format(
-                    "its process, shared with {} other case{}, ended while running it ({})",
-                    group.size() - 1, group.size() == 2 ? "" : "s", outcome.message);
+                shared_ends[group[j]] =
+                    fmt::format("{} ended while running it ({})", shared, outcome.message);
             alone.push_back(group[j]);
         }
     };

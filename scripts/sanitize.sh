@@ -19,7 +19,7 @@ bash "$root/scripts/install-packages.sh" clang libclang-rt-14-dev
 
 echo "== Configuring and building the sanitizer build in $build (clang, ASan + UBSan)"
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DACETATE_WERROR=ON -DACETATE_SANITIZE=ON -DACETATE_BUILD_FUZZERS=ON -DACETATE_BUILD_BENCHMARKS=OFF >/dev/null
+  -DACETATE_WERROR=ON -DACETATE_LINE_TABLES_ONLY=ON -DACETATE_SANITIZE=ON -DACETATE_BUILD_FUZZERS=ON -DACETATE_BUILD_BENCHMARKS=OFF >/dev/null
 fuzzers=(scene registry pipeline_cache image)
 targets=(acetate_unit_tests acetate_cli_tests lighting bloom water specular fire)
 for f in "${fuzzers[@]}"; do targets+=("fuzz_$f"); done
