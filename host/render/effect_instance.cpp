@@ -124,6 +124,7 @@ Result<PreparedInstance> prepare(Renderer& renderer, const SceneDesc& scene, con
         std::fprintf(stderr, "acetate: log: %s\n", line.c_str());
     instance.reach = graph->reach;
     for (const GraphPhase& phase : graph->phases) instance.phase_periods.push_back(phase.period);
+    instance.frame_layout = EffectFrameLayout(instance.params.size(), graph->phases.size());
     instance.graph_digest = effect_graph_digest(graph.value());
     out.graph = std::move(graph.value());
     out.lights = std::move(facts.light_infos);
@@ -200,7 +201,7 @@ Result<std::unique_ptr<EffectInstance>> create(Renderer& renderer, const SceneDe
                                           pipeline.error().message));
         runtime.pipeline = pipeline.value();
         auto uniforms = GpuBuffer::create(
-            context, effect_uniform_bytes(d.params.size(), graph->phases.size()),
+            context, instance->frame_layout.bytes(),
             // binding 0 for SPIR-V modules, kFrameStorageBinding for GLSL
             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
         if (!uniforms) return uniforms.error();

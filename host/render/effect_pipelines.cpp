@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/sha256.hpp"
+#include "render/effect_frame_layout.hpp"
 #include "render/pipeline_pool.hpp"
 #include "vulkan/graphics_pipeline.hpp"
 #include "vulkan/vk_check.hpp"
@@ -96,9 +97,8 @@ std::string checked_builtins_glsl() {
 std::string effect_glsl_preamble(const EffectDescriptor& effect, const GraphPass& pass,
                                  const std::vector<GraphPhase>& phases, bool checked_builtins,
                                  FrameBlockDeclaration frame) {
-    // The block only grows at its end (after acetate_params), so a plugin that gives a whole
-    // SPIR-V module declaring the ABI 1.0 block still reads the same offsets. Both declarations
-    // have the same std140 layout; see kFrameStorageBinding for why GLSL passes get storage.
+    // The frame block (EffectFrameLayout). Both declarations have the same std140 layout; see
+    // kFrameStorageBinding for why GLSL passes get storage.
     std::string out = "#version 450\n";
     out +=
         frame == FrameBlockDeclaration::Storage
@@ -106,14 +106,7 @@ std::string effect_glsl_preamble(const EffectDescriptor& effect, const GraphPass
                           EffectPipelines::kFrameStorageBinding)
             : fmt::format("layout(set = 0, binding = {}, std140) uniform AcetateFrame {{\n",
                           EffectPipelines::kFrameBinding);
-    out +=
-        "    vec4 acetate_canvas;   // width, height, 1/width, 1/height\n"
-        "    vec4 acetate_output;   // this pass's output: width, height, 1/width, 1/height\n"
-        "    vec4 acetate_misc;     // time (s), floor index (-1: global)\n";
-    out += fmt::format("    vec4 acetate_params[{}];\n", std::max<size_t>(1, effect.params.size()));
-    out +=
-        "    vec4 acetate_clock;    // whole seconds, fraction of the second (double on the CPU)\n";
-    out += fmt::format("    vec4 acetate_phases[{}];\n}};\n", std::max<size_t>(1, phases.size()));
+    out += EffectFrameLayout(effect.params.size(), phases.size()).glsl_members() + "};\n";
     // ABI 1.2: the camera (EffectViewPushConstants) and the two conversions a pass needs.
     out +=
         "layout(push_constant) uniform AcetateView {\n"
@@ -179,14 +172,6 @@ std::string effect_glsl_preamble(const EffectDescriptor& effect,
     pass.inputs = inputs;
     pass.kind = kind;
     return effect_glsl_preamble(effect, pass, {}, checked_builtins, frame);
-}
-
-size_t effect_clock_float(size_t params) {
-    return 12 + 4 * std::max<size_t>(1, params);
-}
-
-size_t effect_uniform_bytes(size_t params, size_t phases) {
-    return (effect_clock_float(params) + 4 + 4 * std::max<size_t>(1, phases)) * sizeof(float);
 }
 
 Result<std::unique_ptr<EffectPipelines>> EffectPipelines::create(VulkanContext& context,

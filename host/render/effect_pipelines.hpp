@@ -61,20 +61,6 @@ class EffectPipelines {
     GpuBuffer empty_buffer_;
 };
 
-// The frame uniforms as the GLSL block AcetateFrame lays them out (std140).
-struct EffectFrameUniforms {
-    float canvas[4];  // width, height, 1/width, 1/height
-    float output[4];  // this pass's output size and its reciprocal
-    float misc[4];    // time in seconds, floor index (-1 for global), instance data offset, 0
-    // followed by max(1, parameters) vec4 (a parameter's components), then the clock vec4
-    // (whole seconds, fraction), then max(1, phases) vec4 (phase in .x)
-};
-
-// Bytes of the frame uniforms for an effect with these counts, and the float index of the
-// clock and of the first phase.
-size_t effect_uniform_bytes(size_t params, size_t phases);
-size_t effect_clock_float(size_t params);
-
 // ABI 1.2: the camera, as the push-constant block AcetateView lays it out (both stages).
 struct EffectViewPushConstants {
     float view[4];          // origin x, y (scene pixels), scale, 1 / scale

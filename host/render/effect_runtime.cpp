@@ -90,26 +90,20 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
         if (io.warm_up) scissor = PixelRect{0, 0, 1, 1};
         // Frame uniforms for this pass (the buffer is host-coherent and frames are synchronous).
         auto* u = static_cast<float*>(pass.uniforms.mapped());
+        const EffectFrameLayout& layout = instance.frame_layout;
         const float w = float(io.canvas_width), h = float(io.canvas_height);
         const float ow = float(output->width()), oh = float(output->height());
-        const float header[12] = {w,
-                                  h,
-                                  1 / w,
-                                  1 / h,
-                                  ow,
-                                  oh,
-                                  1 / ow,
-                                  1 / oh,
-                                  float(io.time),
-                                  float(instance.floor),
-                                  float(pass.instance_data_offset),
-                                  0};
-        std::memcpy(u, header, sizeof(header));
+        const float canvas[4] = {w, h, 1 / w, 1 / h}, out[4] = {ow, oh, 1 / ow, 1 / oh};
+        const float misc[4] = {float(io.time), float(instance.floor),
+                               float(pass.instance_data_offset), 0};
+        std::memcpy(u + layout.canvas(), canvas, sizeof(canvas));
+        std::memcpy(u + layout.output(), out, sizeof(out));
+        std::memcpy(u + layout.misc(), misc, sizeof(misc));
         for (size_t i = 0; i < instance.params.size(); ++i)
-            std::memcpy(u + 12 + i * 4, instance.params[i].data(), 4 * sizeof(float));
+            std::memcpy(u + layout.param(i), instance.params[i].data(), 4 * sizeof(float));
         // The clock and phases are reduced in double here, so a shader at 10^5 s animates as
         // smoothly as at 1 s (acetate_time, a float, steps by 7.8 ms there).
-        float* clock = u + effect_clock_float(instance.params.size());
+        float* clock = u + layout.clock();
         const double whole = std::floor(io.time);
         clock[0] = float(std::fmod(whole, 16777216.0));  // exact in a float up to 2^24 s
         // Kept below 1 as the phases are: a time just under a whole second (2.99999999) has a
@@ -119,7 +113,7 @@ void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& inst
             double turns = io.time / instance.phase_periods[i];
             if (!std::isfinite(turns)) turns = 0;  // a time no frame reaches; never a NaN phase
             // fract() of a float that rounds up to 1.0 would wrap a whole turn early.
-            clock[4 + i * 4] = std::min(float(turns - std::floor(turns)), 0x1.fffffep-1f);
+            u[layout.phase(i)] = std::min(float(turns - std::floor(turns)), 0x1.fffffep-1f);
         }
 
         // Inputs in binding order; the bindings past them read the blank texture.

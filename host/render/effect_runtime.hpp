@@ -14,6 +14,7 @@
 #include "plugins/effect_graph.hpp"
 #include "plugins/plugin_loader.hpp"
 #include "plugins/resolve_params.hpp"
+#include "render/effect_frame_layout.hpp"
 #include "render/frame_stats.hpp"
 #include "scene/scene.hpp"
 #include "vulkan/gpu_image.hpp"
@@ -44,7 +45,7 @@ struct EffectPassRuntime {
     uint64_t instanced_pixels =
         0;                   // sum of the quads' areas on the output (count_instanced_pixels)
     bool from_glsl = false;  // compiled from GLSL; false: given as SPIR-V (not checkable)
-    GpuBuffer uniforms;      // laid out as EffectFrameUniforms says
+    GpuBuffer uniforms;      // the frame block, laid out as the instance's frame_layout says
 };
 
 struct EffectInstance {
@@ -56,6 +57,7 @@ struct EffectInstance {
     bool expanding = false;
     ParamVectors params;                // resolved, clamped; 4 floats per parameter
     std::vector<double> phase_periods;  // declared phases (seconds), in declaration order
+    EffectFrameLayout frame_layout;     // its passes' frame block, for these counts
     std::optional<uint32_t> reach;      // declared reach of an expanding effect (pixels)
     std::vector<EffectPassRuntime> passes;
     std::map<std::string, GpuImage*> targets;  // by declared name; owned by EffectTargets
