@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The harbour frame of two `acetate` builds side by side in one run: each run is a fresh
 # process per build, alternating A, B, A, B, ... so the machine's noise falls on both alike.
-# Prints each build's median frame time per floor over the runs and the ratio B / A.
+# Prints each build's median frame time per floor over the runs and the ratio B / A, and the
+# passes and pipeline barriers each recorded per frame.
 #
 #   A="env LD_LIBRARY_PATH=/tmp/before/lib /tmp/before/bin/acetate" B=build/host/acetate \
 #       benchmarks/frame_ab.sh                   # RUNS=7 by default
@@ -35,15 +36,20 @@ python3 - "$work" "$RUNS" <<'PY'
 import json, statistics, sys
 work, runs = sys.argv[1], int(sys.argv[2])
 def frames(name):
-    per_floor = {}
+    per_floor, counts = {}, {}
     for i in range(1, runs + 1):
         for f in json.load(open(f"{work}/{name}-{i}.json"))["frames"]:
             per_floor.setdefault(f["active_floor"], []).append(f["milliseconds"])
-    return {k: statistics.median(v) for k, v in sorted(per_floor.items())}
-a, b = frames("A"), frames("B")
-print(f"median frame (ms) over {runs} processes each, A and B alternating")
-print("| active floor | A | B | B / A |")
-print("|---|---|---|---|")
+            # Passes and barriers are the plan's, the same in every run (absent before both
+            # were counted: "-").
+            counts[f["active_floor"]] = (f.get("passes", "-"), f.get("barriers", "-"))
+    return {k: statistics.median(v) for k, v in sorted(per_floor.items())}, counts
+(a, a_counts), (b, b_counts) = frames("A"), frames("B")
+print(f"median frame (ms) over {runs} processes each, A and B alternating;"
+      " passes and barriers recorded per frame")
+print("| active floor | A | B | B / A | passes A, B | barriers A, B |")
+print("|---|---|---|---|---|---|")
 for floor in a:
-    print(f"| {floor} | {a[floor]:.2f} | {b[floor]:.2f} | {b[floor] / a[floor]:.3f} |")
+    print(f"| {floor} | {a[floor]:.2f} | {b[floor]:.2f} | {b[floor] / a[floor]:.3f} "
+          f"| {a_counts[floor][0]}, {b_counts[floor][0]} | {a_counts[floor][1]}, {b_counts[floor][1]} |")
 PY

@@ -26,6 +26,7 @@ nlohmann::json to_json(const host::FrameStatistics& frame) {
                           {"render_targets_allocated", frame.targets_allocated},
                           {"shaders_compiled", frame.shaders_compiled},
                           {"pipelines_created", frame.pipelines_created},
+                          {"barriers", frame.barriers},
                           {"premultiplied_violations", frame.violations},
                           {"floors", floors}};
     if (frame.global_effects) out["global_effects"] = step_json(*frame.global_effects);

@@ -257,6 +257,7 @@ Result<FrameStatistics> Scene::render() {
     out.targets_allocated = stats->targets_allocated;
     out.shaders_compiled = stats->shaders_compiled;
     out.pipelines_created = stats->pipelines_created;
+    out.barriers = stats->barriers;
     for (const FloorFrameReport& floor : stats->floors) out.floors.push_back(step_of(floor));
     if (stats->global) out.global_effects = step_of(*stats->global);
     for (const PassTiming& pass : stats->gpu_passes)

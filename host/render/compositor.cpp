@@ -61,6 +61,7 @@ Result<FrameStats> Compositor::render(uint32_t active_floor, double time) {
     stats.targets_allocated = used.targets_allocated;
     stats.shaders_compiled = used.shaders_compiled;
     stats.pipelines_created = used.pipelines_created;
+    stats.barriers = used.barriers_recorded;
     return stats;
 }
 

@@ -14,6 +14,7 @@
 // vulkan/render_commands.hpp.
 
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -236,11 +237,20 @@ class Compositor {
                               size_t first, size_t end, FrameStats& stats);
     void record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step, bool clear_all,
                                      double time, FloorFrameReport& report);
-    // The floor's effects in scene order, ping-ponging between the two floor targets; returns
-    // the target holding the result.
-    GpuImage* record_floor_effects(VkCommandBuffer cmd, const FloorStep& step,
-                                   const std::vector<PixelRect>* rects, bool expanding, double time,
-                                   FloorFrameReport& report);
+    // One chain of effects, a floor's or the global ones: `run` effects in scene order, each
+    // reading the image the one before it wrote (the first reads `current`) and writing the
+    // other image of the pair, which starts transparent; returns the image the last one wrote.
+    // An effect writes "result" within `scissor(effect)` (within `rects` when given).
+    struct EffectChain {
+        const std::vector<std::unique_ptr<EffectInstance>>* effects = nullptr;
+        size_t run = 0;
+        GpuImage* current = nullptr;
+        GpuImage* next = nullptr;
+        std::function<PixelRect(const EffectInstance&)> scissor;
+        const std::vector<PixelRect>* rects = nullptr;
+    };
+    GpuImage* record_effect_chain(VkCommandBuffer cmd, const EffectChain& chain, double time,
+                                  FloorFrameReport& report);
     void record_composite(VkCommandBuffer cmd, const FloorStep& step, GpuImage& floor,
                           const std::vector<PixelRect>* rects, bool expanding,
                           FloorFrameReport& report);

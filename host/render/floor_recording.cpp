@@ -174,37 +174,46 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     if (timer_) timer_->mark(cmd, fmt::format("floor {} tiles", step.floor));
 
     GpuImage* floor = &colour;
-    if (!floor_effects_[step.floor].empty() && effects_enabled_ && floor_effects_run_ > 0)
-        floor = record_floor_effects(cmd, step, rects, expanding, time, report);
+    const auto& effects = floor_effects_[step.floor];
+    if (!effects.empty() && effects_enabled_ && floor_effects_run_ > 0) {
+        // An expanding effect (or any effect after one) writes where the floor's coverage may
+        // grow to; the others within the floor's scissor.
+        EffectChain chain{&effects,
+                          std::min<size_t>(effects.size(), floor_effects_run_),
+                          &colour,
+                          targets_.floor_pingpong(),
+                          [&](const EffectInstance& effect) {
+                              return effect.expanding || expanding ? expansion_areas_[step.floor]
+                                                                   : step.scissor;
+                          },
+                          rects};
+        floor = record_effect_chain(cmd, chain, time, report);
+    }
     viewed_floor_ = floor;
     record_composite(cmd, step, *floor, rects, expanding, report);
 }
 
-GpuImage* Compositor::record_floor_effects(VkCommandBuffer cmd, const FloorStep& step,
-                                           const std::vector<PixelRect>* rects, bool expanding,
-                                           double time, FloorFrameReport& report) {
-    GpuImage* current = targets_.floor_colour();
-    GpuImage* next = targets_.floor_pingpong();
+GpuImage* Compositor::record_effect_chain(VkCommandBuffer cmd, const EffectChain& chain,
+                                          double time, FloorFrameReport& report) {
+    GpuImage* current = chain.current;
+    GpuImage* next = chain.next;
     clear_image(cmd, *next);
-    const auto& effects = floor_effects_[step.floor];
-    const size_t run = std::min<size_t>(effects.size(), floor_effects_run_);
-    for (size_t i = 0; i < run; ++i) {
-        const auto& effect = effects[i];
+    for (size_t i = 0; i < chain.run; ++i) {
+        EffectInstance& effect = *(*chain.effects)[i];
         EffectIo io = effect_io(time);
         io.previous = current;
         io.result = next;
-        io.result_scissor =
-            effect->expanding || expanding ? expansion_areas_[step.floor] : step.scissor;
-        io.result_rects = rects;
+        io.result_scissor = chain.scissor(effect);
+        io.result_rects = chain.rects;
         // What "result" holds before this effect writes it: the poison where its passes
         // shade, the zeros (or tiles) of today elsewhere.
         if (options_.poison) {
-            if (rects)
-                for (const PixelRect& r : *rects) fill_area(cmd, *next, r, *options_.poison);
+            if (chain.rects)
+                for (const PixelRect& r : *chain.rects) fill_area(cmd, *next, r, *options_.poison);
             else
                 fill_area(cmd, *next, io.result_scissor, *options_.poison);
         }
-        record_effect(cmd, renderer_, *effect, io, report);
+        record_effect(cmd, renderer_, effect, io, report);
         std::swap(current, next);
     }
     return current;
@@ -246,24 +255,19 @@ void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, d
     final_accumulation_ = &targets_.accumulation();
     const size_t run = std::min<size_t>(global_effects_.size(), global_effects_run_);
     if (run == 0) return;
-    GpuImage* current = &targets_.accumulation();
-    GpuImage* next = targets_.accumulation_pingpong();
-    clear_image(cmd, *next);  // like the floor ping-pong: "result" starts transparent
     FloorFrameReport report;
     report.floor = UINT32_MAX;
     report.path = "global";
     report.why = "global effects on the composite";
     report.scissor = {0, 0, int64_t(width_), int64_t(height_)};
-    for (size_t e = 0; e < run; ++e) {
-        const auto& effect = global_effects_[e];
-        EffectIo io = effect_io(time);
-        io.previous = current;
-        io.result = next;
-        io.result_scissor = report.scissor;  // every pass writes every pixel of "result"
-        if (options_.poison) fill_area(cmd, *next, io.result_scissor, *options_.poison);
-        record_effect(cmd, renderer_, *effect, io, report);
-        std::swap(current, next);
-    }
+    // Every pass of a global effect writes every pixel of "result".
+    const EffectChain chain{&global_effects_,
+                            run,
+                            &targets_.accumulation(),
+                            targets_.accumulation_pingpong(),
+                            [&](const EffectInstance&) { return report.scissor; },
+                            nullptr};
+    GpuImage* current = record_effect_chain(cmd, chain, time, report);
     final_accumulation_ = current;
     stats.passes += report.passes;
     stats.pixels_shaded += report.pixels_shaded;

@@ -31,6 +31,7 @@ struct FrameStats {
     uint64_t targets_allocated = 0;  // during this frame
     uint64_t shaders_compiled = 0;   // during this frame
     uint64_t pipelines_created = 0;  // during this frame
+    uint64_t barriers = 0;           // pipeline barriers recorded (ResourceCounters)
     // Pixels of floor content reaching the composite with a == 0 but rgb != 0, or NaN/Inf,
     // counted on the GPU. A floor drawn directly has only its tiles as content, and tile texels
     // are checked once at load (LoadStats::tile_texel_violations).

@@ -183,6 +183,7 @@ void GpuImage::transition(VkCommandBuffer cmd, VkImageLayout layout) {
     dep.imageMemoryBarrierCount = 1;
     dep.pImageMemoryBarriers = &barrier;
     vkCmdPipelineBarrier2(cmd, &dep);
+    if (context_) ++context_->counters().barriers_recorded;
     layout_ = layout;
 }
 

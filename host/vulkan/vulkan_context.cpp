@@ -345,6 +345,7 @@ Result<void> VulkanContext::submit_and_wait(const std::function<void(VkCommandBu
     dependency.memoryBarrierCount = 1;
     dependency.pMemoryBarriers = &to_host;
     vkCmdPipelineBarrier2(cmd, &dependency);
+    ++counters_.barriers_recorded;
     vkEndCommandBuffer(cmd);
 
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};

@@ -31,13 +31,18 @@ struct ResourceCounters {
     uint64_t targets_allocated = 0;
     uint64_t shaders_compiled = 0;
     uint64_t pipelines_created = 0;
+    // Pipeline barriers recorded: every image layout transition, and the one that makes a
+    // submission's writes visible to the host. Not expensive alone; a frame's count shows how
+    // much of it is synchronisation (a compiled frame plans fewer).
+    uint64_t barriers_recorded = 0;
 };
 // What a load or a frame allocated, loaded or compiled: the counters' growth since `before`.
 inline ResourceCounters operator-(const ResourceCounters& after, const ResourceCounters& before) {
     return {after.images_loaded - before.images_loaded,
             after.targets_allocated - before.targets_allocated,
             after.shaders_compiled - before.shaders_compiled,
-            after.pipelines_created - before.pipelines_created};
+            after.pipelines_created - before.pipelines_created,
+            after.barriers_recorded - before.barriers_recorded};
 }
 
 class VulkanContext {

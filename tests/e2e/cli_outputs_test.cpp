@@ -165,7 +165,7 @@ TEST(CliStats, ReportsLoadFramesAndTargets) {
         EXPECT_GE(frame["milliseconds"].get<double>(), 0.0) << where;
         for (const char* key :
              {"passes", "pixels_shaded", "images_loaded", "render_targets_allocated",
-              "shaders_compiled", "pipelines_created", "premultiplied_violations"})
+              "shaders_compiled", "pipelines_created", "barriers", "premultiplied_violations"})
             expect_count(frame, key, where);
         if (HasFailure()) return;
         EXPECT_GT(frame["passes"].get<int64_t>(), 0) << where;
@@ -186,6 +186,10 @@ TEST(CliStats, ReportsLoadFramesAndTargets) {
               stats["frames"][0]["pixels_shaded"].get<int64_t>());
     EXPECT_EQ(stats["frames"][2]["pixels_shaded"], stats["frames"][0]["pixels_shaded"]);
     EXPECT_EQ(stats["frames"][2]["passes"], stats["frames"][0]["passes"]);
+    // Barriers are the plan's: the same floor again records as many; every frame records at
+    // least the one that makes its writes visible to the host.
+    EXPECT_EQ(stats["frames"][2]["barriers"], stats["frames"][0]["barriers"]);
+    EXPECT_GT(stats["frames"][0]["barriers"].get<int64_t>(), 1);
 
     ASSERT_TRUE(stats.contains("render_targets"));
     ASSERT_TRUE(stats["render_targets"].is_array());

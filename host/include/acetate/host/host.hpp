@@ -209,6 +209,9 @@ struct FrameStatistics {
     uint64_t violations = 0;     // pixels reaching the composite with colour at alpha 0, or NaN
     // Work done during the frame: 0 for all four, always (everything is made at load).
     uint64_t images_loaded = 0, targets_allocated = 0, shaders_compiled = 0, pipelines_created = 0;
+    // Pipeline barriers recorded: each image layout transition, and one that makes the frame's
+    // writes visible to the host. The same for every frame of one plan.
+    uint64_t barriers = 0;
     std::vector<StepStatistics> floors;            // floors 0..active_floor, bottom to top
     std::optional<StepStatistics> global_effects;  // when the scene has any
     std::vector<PassTime> gpu_passes;  // in the order recorded; with SceneOptions::gpu_timings
