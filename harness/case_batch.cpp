@@ -113,7 +113,8 @@ std::vector<CaseResult> run_case_batch(CaseBatch& run, const std::vector<CaseSpe
 std::vector<std::vector<size_t>> group_cases(const std::vector<CaseSpec>& cases,
                                              unsigned per_process, unsigned jobs) {
     // At least four processes a job where there are cases enough.
-    const size_t per_job = (cases.size() + size_t(jobs) * 4 - 1) / (size_t(std::max(jobs, 1u)) * 4);
+    const size_t slots = size_t(std::max(jobs, 1u)) * 4;
+    const size_t per_job = (cases.size() + slots - 1) / slots;
     const size_t size = std::clamp<size_t>(per_job, 1, std::max(per_process, 1u));
     std::vector<std::vector<size_t>> groups;
     bool open = false;  // the last group takes more cases

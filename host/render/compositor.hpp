@@ -14,7 +14,6 @@
 // vulkan/render_commands.hpp.
 
 #include <array>
-#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -240,13 +239,15 @@ class Compositor {
     // One chain of effects, a floor's or the global ones: `run` effects in scene order, each
     // reading the image the one before it wrote (the first reads `current`) and writing the
     // other image of the pair, which starts transparent; returns the image the last one wrote.
-    // An effect writes "result" within `scissor(effect)` (within `rects` when given).
+    // An effect writes "result" within `scissor` (within `rects` when given), or within
+    // `expanded` when it, or the whole chain, expands coverage.
     struct EffectChain {
         const std::vector<std::unique_ptr<EffectInstance>>* effects = nullptr;
         size_t run = 0;
         GpuImage* current = nullptr;
         GpuImage* next = nullptr;
-        std::function<PixelRect(const EffectInstance&)> scissor;
+        PixelRect scissor, expanded;
+        bool expanding = false;
         const std::vector<PixelRect>* rects = nullptr;
     };
     GpuImage* record_effect_chain(VkCommandBuffer cmd, const EffectChain& chain, double time,

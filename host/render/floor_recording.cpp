@@ -176,17 +176,12 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     GpuImage* floor = &colour;
     const auto& effects = floor_effects_[step.floor];
     if (!effects.empty() && effects_enabled_ && floor_effects_run_ > 0) {
-        // An expanding effect (or any effect after one) writes where the floor's coverage may
-        // grow to; the others within the floor's scissor.
-        EffectChain chain{&effects,
-                          std::min<size_t>(effects.size(), floor_effects_run_),
-                          &colour,
-                          targets_.floor_pingpong(),
-                          [&](const EffectInstance& effect) {
-                              return effect.expanding || expanding ? expansion_areas_[step.floor]
-                                                                   : step.scissor;
-                          },
-                          rects};
+        // An expanding effect (or any effect of a floor that has one) writes where the floor's
+        // coverage may grow to; the others within the floor's scissor.
+        const EffectChain chain{&effects,     std::min<size_t>(effects.size(), floor_effects_run_),
+                                &colour,      targets_.floor_pingpong(),
+                                step.scissor, expansion_areas_[step.floor],
+                                expanding,    rects};
         floor = record_effect_chain(cmd, chain, time, report);
     }
     viewed_floor_ = floor;
@@ -203,7 +198,7 @@ GpuImage* Compositor::record_effect_chain(VkCommandBuffer cmd, const EffectChain
         EffectIo io = effect_io(time);
         io.previous = current;
         io.result = next;
-        io.result_scissor = chain.scissor(effect);
+        io.result_scissor = effect.expanding || chain.expanding ? chain.expanded : chain.scissor;
         io.result_rects = chain.rects;
         // What "result" holds before this effect writes it: the poison where its passes
         // shade, the zeros (or tiles) of today elsewhere.
@@ -265,7 +260,9 @@ void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, d
                             run,
                             &targets_.accumulation(),
                             targets_.accumulation_pingpong(),
-                            [&](const EffectInstance&) { return report.scissor; },
+                            report.scissor,
+                            report.scissor,
+                            false,
                             nullptr};
     GpuImage* current = record_effect_chain(cmd, chain, time, report);
     final_accumulation_ = current;
