@@ -33,17 +33,19 @@ Result<FrameStats> Compositor::render(uint32_t active_floor, double time) {
                                       to_string(options_.view)));
     const auto start = std::chrono::steady_clock::now();
     const ResourceCounters before = context_.counters();
-    PlanOptions plan_options = options_.plan;
-    if (view_reads_floor_target(options_.view)) plan_options.force_target_floor = active_floor;
-    if (options_.inject) plan_options.draw_direct = false;  // the hook acts like an effect
-    last_plan_ = plan_frame(width_, height_, geometry_, active_floor, plan_options);
+    const FrameShape& shape = frame_for(active_floor);
+    last_plan_ = shape.plan;
+    final_accumulation_ = shape.final_accumulation;
+    viewed_floor_ = shape.viewed_floor;
 
     FrameStats stats;
     stats.active_floor = active_floor;
     GpuBuffer& violations = targets_.violations();
     std::memset(violations.mapped(), 0, violations.size());
-    ACETATE_TRY(context_.submit_and_wait(
-        [&](VkCommandBuffer cmd) { record_frame(cmd, last_plan_, stats, time); }));
+    ACETATE_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
+        if (timer_) timer_->begin(cmd);
+        shape.frame.execute(cmd, time, stats);
+    }));
     stats.milliseconds = milliseconds_since(start);
     if (timer_) {
         auto timings = timer_->read();
@@ -63,6 +65,18 @@ Result<FrameStats> Compositor::render(uint32_t active_floor, double time) {
     stats.pipelines_created = used.pipelines_created;
     stats.barriers = used.barriers_recorded;
     return stats;
+}
+
+const Compositor::FrameShape& Compositor::frame_for(uint32_t active_floor) {
+    const FrameKey key{active_floor, options_.view, effects_enabled_, floor_effects_run_,
+                       global_effects_run_};
+    if (auto found = frames_.find(key); found != frames_.end()) return found->second;
+    PlanOptions plan_options = options_.plan;
+    if (view_reads_floor_target(options_.view)) plan_options.force_target_floor = active_floor;
+    if (options_.inject) plan_options.draw_direct = false;  // the hook acts like an effect
+    const FramePlan plan = plan_frame(width_, height_, geometry_, active_floor, plan_options);
+    ++frames_compiled_;
+    return frames_.emplace(key, compile_frame(plan, active_floor)).first->second;
 }
 
 Result<ImageRGBA> Compositor::read_output() {

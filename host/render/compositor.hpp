@@ -21,6 +21,7 @@
 #include <string>
 
 #include "core/view_transform.hpp"
+#include "render/compiled_frame.hpp"
 #include "render/effect_runtime.hpp"
 #include "render/frame_plan.hpp"
 #include "render/frame_stats.hpp"
@@ -180,6 +181,9 @@ class Compositor {
     // Effect passes of every instance (floors and global), by how they were given.
     EffectPassCounts effect_pass_counts() const;
     const FramePlan& last_plan() const { return last_plan_; }
+    // Frames compiled so far (frame_for): at load, then only for a new shape or after the
+    // camera moved or an effect was rebuilt.
+    uint64_t frames_compiled() const { return frames_compiled_; }
     // The fewest pixels any renderer of floors 0..active_floor must shade (what
     // FrameStats::pixels_shaded is judged against): the output over the canvas; each visible
     // floor's tiles once each; for a floor with effects, each full-resolution effect pass and
@@ -229,13 +233,34 @@ class Compositor {
     // The sampler a tile is drawn with under the current camera.
     VkSampler tile_sampler(const LoadedTile& tile) const;
 
-    // A frame's commands (floor_recording.cpp).
-    void record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats, double time);
+    // A frame's passes (floor_recording.cpp), compiled once per frame shape and kept.
+    struct FrameShape {
+        FramePlan plan;
+        CompiledFrame frame;
+        GpuImage* final_accumulation = nullptr;  // the composite the output reads
+        GpuImage* viewed_floor = nullptr;        // the active floor's content, for views
+    };
+    // What a compiled frame depends on besides the loaded scene and its camera: a change of
+    // either drops every compiled frame (invalidate_frames).
+    struct FrameKey {
+        uint32_t active_floor = 0;
+        OutputView view = OutputView::Normal;
+        bool effects_enabled = true;
+        uint32_t floor_effects_run = 0, global_effects_run = 0;
+        auto operator<=>(const FrameKey&) const = default;
+    };
+    // The compiled frame for floors 0..active_floor as the compositor stands (compositor.cpp):
+    // planned and compiled on first use, then kept until invalidate_frames().
+    const FrameShape& frame_for(uint32_t active_floor);
+    void invalidate_frames() { frames_.clear(); }
+    FrameShape compile_frame(const FramePlan& plan, uint32_t active_floor);
     // Steps [first, end): floors drawn directly (and skipped ones), in one rendering pass.
-    void record_floors_direct(VkCommandBuffer cmd, const std::vector<FloorStep>& steps,
-                              size_t first, size_t end, FrameStats& stats);
-    void record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step, bool clear_all,
-                                     double time, FloorFrameReport& report);
+    void add_floors_direct(FrameBuilder& frame, const std::vector<FloorStep>& steps, size_t first,
+                           size_t end, std::vector<FloorFrameReport>& reports);
+    // Tiles with the stencil, the floor's effects, its composite; returns the floor's image
+    // after its effects.
+    GpuImage* add_floor_through_target(FrameBuilder& frame, const FloorStep& step, bool clear_all,
+                                       ReportIndex report);
     // One chain of effects, a floor's or the global ones: `run` effects in scene order, each
     // reading the image the one before it wrote (the first reads `current`) and writing the
     // other image of the pair, which starts transparent; returns the image the last one wrote.
@@ -249,14 +274,18 @@ class Compositor {
         PixelRect scissor, expanded;
         bool expanding = false;
         const std::vector<PixelRect>* rects = nullptr;
+        ReportIndex report = 0;  // where its passes count
+        std::string name;        // "floor 2", "global": names its clear pass
     };
-    GpuImage* record_effect_chain(VkCommandBuffer cmd, const EffectChain& chain, double time,
-                                  FloorFrameReport& report);
+    GpuImage* add_effect_chain(FrameBuilder& frame, const EffectChain& chain);
+    // The global effects on the composite (their report made when any runs); returns the
+    // composite after them.
+    GpuImage* add_global_effects(FrameBuilder& frame, std::optional<FloorFrameReport>& global);
+    void add_output(FrameBuilder& frame, GpuImage& accumulation, GpuImage* floor_image);
+    void record_injection(VkCommandBuffer cmd, const PixelRect& scissor, FloorFrameReport& report);
     void record_composite(VkCommandBuffer cmd, const FloorStep& step, GpuImage& floor,
-                          const std::vector<PixelRect>* rects, bool expanding,
-                          FloorFrameReport& report);
-    void record_global_effects(VkCommandBuffer cmd, FrameStats& stats, double time);
-    void record_output(VkCommandBuffer cmd, FrameStats& stats);
+                          const PixelRect& area, const std::vector<PixelRect>* rects,
+                          bool expanding, FloorFrameReport& report);
     void draw_tiles(VkCommandBuffer cmd, HostPass pass, uint32_t floor, const PixelRect& scissor,
                     FloorFrameReport& report);
     // Binds the pass's pipeline (its isolation variant in that view) and its two images.
@@ -279,7 +308,9 @@ class Compositor {
     FrameTargets targets_;
     GpuImage* final_accumulation_ = nullptr;  // what the output read last frame
     GpuImage* viewed_floor_ = nullptr;        // the active floor's content, for views
-    std::vector<FloorGeometry> geometry_;     // what the planner works from, in render pixels
+    std::map<FrameKey, FrameShape> frames_;   // compiled frames (frame_for)
+    uint64_t frames_compiled_ = 0;
+    std::vector<FloorGeometry> geometry_;  // what the planner works from, in render pixels
     // Per floor, per tile: the render pixels it shades under the camera.
     std::vector<std::vector<PixelRect>> tile_pixels_;
     std::vector<PixelRect> expansion_areas_;  // per floor; empty unless it has expanding effects

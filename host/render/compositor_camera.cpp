@@ -158,6 +158,7 @@ Result<void> Compositor::rebuild_for_view(FrameTargets* new_targets) {
     }
     // The frames before used the old instances and targets: they are finished (every frame is
     // waited for), so those can go now.
+    invalidate_frames();  // they named the old instances and targets
     if (new_targets) targets_ = std::move(*new_targets);
     for (size_t f = 0; f < floors.size(); ++f)
         for (size_t i = 0; i < floors[f].size(); ++i)

@@ -150,6 +150,8 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
     out->plan_geometry(scene);
     ACETATE_TRY(out->warm_pipelines());
     if (options.gpu_timings) out->create_timer();
+    // Every active floor's frame in the view loaded with, compiled now: a frame only runs one.
+    for (uint32_t f = 0; f < out->floor_count(); ++f) out->frame_for(f);
 
     const ResourceCounters used = context.counters() - before;
     out->load_stats_ = {milliseconds_since(start), used.images_loaded,
@@ -202,6 +204,7 @@ Result<void> Compositor::ensure_host_pipelines() {
 // planning it covers its tiles grown by the effects' declared reach, or the whole output when
 // one declared none.
 void Compositor::plan_geometry(const SceneDesc& scene) {
+    invalidate_frames();  // compiled for the old areas
     geometry_.clear();
     tile_pixels_.clear();
     expansion_areas_.clear();  // planned again when a live change moves an effect's reach

@@ -94,6 +94,7 @@ Result<Compositor::EffectChange> Compositor::set_effect_ref(std::optional<uint32
         // The frames before used the old instance's buffers: they are finished (every frame
         // is waited for), so it can go now.
         instance = std::move(created.value());
+        invalidate_frames();  // they named the old instance's passes and targets
         refs[index] = std::move(updated);
         if (reach_changed) plan_geometry(scene_);
         // As at load: every pipeline draws once (lavapipe compiles at the first draw) and

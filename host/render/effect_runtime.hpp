@@ -151,8 +151,19 @@ void count_instanced_pixels(EffectInstance& instance, const ViewTransform& view)
 void bind_pass_masks(EffectInstance& instance, const std::map<std::string, GpuImage>* masks,
                      const GpuImage& blank);
 
-// Records an instance's passes; counts passes and pixels shaded into `report`. Looks up no
-// name and allocates nothing.
+// What binding `binding` of a pass reads ("previous" is io.previous) and what the pass writes
+// (its own target, or io.result): the uses a compiled frame declares for it.
+const GpuImage* effect_pass_input(const EffectPassRuntime& pass, size_t binding,
+                                  const EffectIo& io);
+GpuImage* effect_pass_output(const EffectPassRuntime& pass, const EffectIo& io);
+
+// Records pass `index` of an instance, its inputs already sampled-read and its output already
+// a colour attachment (a compiled frame's planned barriers); counts the pass and the pixels it
+// shades into `report`. Looks up no name and allocates nothing.
+void record_effect_pass(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& instance,
+                        size_t index, const EffectIo& io, FloorFrameReport& report);
+// Every pass of an instance, each with its own transitions: outside a compiled frame (the
+// load's warm-up).
 void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& instance,
                    const EffectIo& io, FloorFrameReport& report);
 

@@ -1,11 +1,13 @@
-// A frame's commands: each floor up to the active one drawn directly into the accumulation or
-// through its own target (tiles with the stencil, effects, composite), then the global effects
-// and the output pass. Compositor::render (compositor.cpp) plans the frame and submits this.
+// A frame as passes (compiled_frame.hpp): each floor up to the active one drawn directly into
+// the accumulation or through its own target (tiles with the stencil, effects, composite), then
+// the global effects and the output pass, each pass naming the images it reads and writes.
+// Compiled once per frame shape (Compositor::frame_for, compositor.cpp); a pass records its
+// commands when the compiled frame runs, reading the time and the camera of that frame.
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "render/compositor.hpp"  // the class whose recording half this is
+#include "render/compositor.hpp"  // the class whose frames this builds
 #include "render/renderer.hpp"
 #include "vulkan/render_commands.hpp"
 #include "vulkan/vulkan_context.hpp"
@@ -110,8 +112,9 @@ void Compositor::draw_tiles(VkCommandBuffer cmd, HostPass pass, uint32_t floor,
     }
 }
 
-void Compositor::record_floors_direct(VkCommandBuffer cmd, const std::vector<FloorStep>& steps,
-                                      size_t first, size_t end, FrameStats& stats) {
+void Compositor::add_floors_direct(FrameBuilder& frame, const std::vector<FloorStep>& steps,
+                                   size_t first, size_t end,
+                                   std::vector<FloorFrameReport>& reports) {
     // Consecutive floors drawn directly share one rendering pass over the union of their
     // scissors: blending happens in draw order within a pass, so this is the same "over" as one
     // pass per floor, without the barrier and the pass set-up between floors. Each floor's
@@ -119,29 +122,32 @@ void Compositor::record_floors_direct(VkCommandBuffer cmd, const std::vector<Flo
     PixelRect area;
     for (size_t i = first; i < end; ++i)
         if (steps[i].path == FloorPath::Direct) area = bounding_union(area, steps[i].scissor);
-    begin_rendering(cmd, area, {&targets_.accumulation(), LoadOp::Keep});
-    for (size_t i = first; i < end; ++i) {
-        const FloorStep& step = steps[i];
-        FloorFrameReport report = frame_report(step);
-        // Over is associative, so drawing each tile over the accumulation equals compositing
-        // the floor's own "tiles over transparent" image over it (docs/OVERVIEW.md).
-        if (step.path == FloorPath::Direct)
-            draw_tiles(cmd, HostPass::TileToAccum, step.floor, step.scissor, report);
-        stats.passes += report.passes;
-        stats.pixels_shaded += report.pixels_shaded;
-        stats.floors.push_back(report);
-    }
-    vkCmdEndRendering(cmd);
-    if (timer_)
-        timer_->mark(cmd, first + 1 == end ? fmt::format("floor {} tiles", steps[first].floor)
-                                           : fmt::format("floors {}-{} tiles (one pass)",
-                                                         steps[first].floor, steps[end - 1].floor));
+    const size_t first_report = reports.size();
+    for (size_t i = first; i < end; ++i) reports.push_back(frame_report(steps[i]));
+    std::vector<FloorStep> run(steps.begin() + ptrdiff_t(first), steps.begin() + ptrdiff_t(end));
+    const std::string name = first + 1 == end
+                                 ? fmt::format("floor {} tiles", steps[first].floor)
+                                 : fmt::format("floors {}-{} tiles (one pass)", steps[first].floor,
+                                               steps[end - 1].floor);
+    frame.add(name, {{&targets_.accumulation(), ImageAccess::ColourWrite}},
+              ReportIndex(first_report), [this, area, run, first_report, name](PassRecording& r) {
+                  begin_rendering_planned(r.cmd, area, {&targets_.accumulation(), LoadOp::Keep});
+                  // Over is associative, so drawing each tile over the accumulation equals
+                  // compositing the floor's own "tiles over transparent" image over it
+                  // (docs/OVERVIEW.md).
+                  for (size_t k = 0; k < run.size(); ++k)
+                      if (run[k].path == FloorPath::Direct)
+                          draw_tiles(r.cmd, HostPass::TileToAccum, run[k].floor, run[k].scissor,
+                                     (*r.floors)[first_report + k]);
+                  vkCmdEndRendering(r.cmd);
+                  if (timer_) timer_->mark(r.cmd, name);
+              });
 }
 
-void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorStep& step,
-                                             bool clear_all, double time,
-                                             FloorFrameReport& report) {
+GpuImage* Compositor::add_floor_through_target(FrameBuilder& frame, const FloorStep& step,
+                                               bool clear_all, ReportIndex report) {
     GpuImage& colour = *targets_.floor_colour();
+    GpuImage& stencil = *targets_.floor_stencil();
     const bool expanding = expands(step.floor);
     // Where the effects' "result" passes and the composite draw: the tiles' union as rects
     // (shading_rects_), unless the plan scissors to the whole canvas.
@@ -155,23 +161,17 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
     clear_all = clear_all || !floor_effects_[step.floor].empty();
     const PixelRect area =
         clear_all ? PixelRect{0, 0, int64_t(width_), int64_t(height_)} : step.scissor;
-    const StencilAttachment stencil{targets_.floor_stencil(), LoadOp::Clear, 0, true};
-    begin_rendering(cmd, area, {&colour, LoadOp::Clear}, &stencil);
-    draw_tiles(cmd, HostPass::TileToTarget, step.floor, step.scissor, report);
-    if (options_.inject) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                          pipelines_->pipeline(inject_pass(), options_.format));
-        InjectPushConstants push;
-        std::copy(options_.inject->colour.begin(), options_.inject->colour.end(), push.colour);
-        pipelines_->push(cmd, push);
-        set_scissor(cmd, step.scissor);  // like any pass: inside the render area
-        vkCmdDraw(cmd, 3, 1, 0, 0);
-        ++report.passes;
-        report.pixels_shaded += step.scissor.area();
-    }
-    vkCmdEndRendering(cmd);
-    colour.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    if (timer_) timer_->mark(cmd, fmt::format("floor {} tiles", step.floor));
+    frame.add(fmt::format("floor {} tiles", step.floor),
+              {{&colour, ImageAccess::ColourWrite}, {&stencil, ImageAccess::StencilWrite}}, report,
+              [this, step, area](PassRecording& r) {
+                  const StencilAttachment stencil{targets_.floor_stencil(), LoadOp::Clear, 0, true};
+                  begin_rendering_planned(r.cmd, area, {targets_.floor_colour(), LoadOp::Clear},
+                                          &stencil);
+                  draw_tiles(r.cmd, HostPass::TileToTarget, step.floor, step.scissor, *r.report);
+                  if (options_.inject) record_injection(r.cmd, step.scissor, *r.report);
+                  vkCmdEndRendering(r.cmd);
+                  if (timer_) timer_->mark(r.cmd, fmt::format("floor {} tiles", step.floor));
+              });
 
     GpuImage* floor = &colour;
     const auto& effects = floor_effects_[step.floor];
@@ -181,48 +181,98 @@ void Compositor::record_floor_through_target(VkCommandBuffer cmd, const FloorSte
         const EffectChain chain{&effects,     std::min<size_t>(effects.size(), floor_effects_run_),
                                 &colour,      targets_.floor_pingpong(),
                                 step.scissor, expansion_areas_[step.floor],
-                                expanding,    rects};
-        floor = record_effect_chain(cmd, chain, time, report);
+                                expanding,    rects,
+                                report,       fmt::format("floor {}", step.floor)};
+        floor = add_effect_chain(frame, chain);
     }
-    viewed_floor_ = floor;
-    record_composite(cmd, step, *floor, rects, expanding, report);
+    // The floor over the accumulation, only where the floor's stencil says 1 (or, after a
+    // coverage-expanding effect, wherever the floor is not fully transparent).
+    const PixelRect composite_area = expanding ? expansion_areas_[step.floor] : step.scissor;
+    frame.add(fmt::format("floor {} composite", step.floor),
+              {{floor, ImageAccess::Sampled},
+               {&stencil, ImageAccess::StencilTest},
+               {&targets_.accumulation(), ImageAccess::ColourWrite}},
+              report, [this, step, floor, rects, expanding, composite_area](PassRecording& r) {
+                  record_composite(r.cmd, step, *floor, composite_area, rects, expanding,
+                                   *r.report);
+              });
+    return floor;
 }
 
-GpuImage* Compositor::record_effect_chain(VkCommandBuffer cmd, const EffectChain& chain,
-                                          double time, FloorFrameReport& report) {
+void Compositor::record_injection(VkCommandBuffer cmd, const PixelRect& scissor,
+                                  FloorFrameReport& report) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                      pipelines_->pipeline(inject_pass(), options_.format));
+    InjectPushConstants push;
+    std::copy(options_.inject->colour.begin(), options_.inject->colour.end(), push.colour);
+    pipelines_->push(cmd, push);
+    set_scissor(cmd, scissor);  // like any pass: inside the render area
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    ++report.passes;
+    report.pixels_shaded += scissor.area();
+}
+
+GpuImage* Compositor::add_effect_chain(FrameBuilder& frame, const EffectChain& chain) {
     GpuImage* current = chain.current;
     GpuImage* next = chain.next;
-    clear_image(cmd, *next);
+    frame.add(chain.name + " clear " + next->name(), {{next, ImageAccess::TransferWrite}},
+              chain.report, [next](PassRecording& r) { clear_image_planned(r.cmd, *next); });
+    // Images a frame writes: an effect's input among them is a use the graph orders; the
+    // others (masks, textures, the blank texture) are written at load only.
+    const std::vector<GpuImage*> written = targets_.images();
+    auto is_written = [&](const GpuImage* image) {
+        return std::find(written.begin(), written.end(), image) != written.end();
+    };
     for (size_t i = 0; i < chain.run; ++i) {
-        EffectInstance& effect = *(*chain.effects)[i];
-        EffectIo io = effect_io(time);
-        io.previous = current;
-        io.result = next;
-        io.result_scissor = effect.expanding || chain.expanding ? chain.expanded : chain.scissor;
-        io.result_rects = chain.rects;
+        EffectInstance* effect = (*chain.effects)[i].get();
+        const PixelRect scissor =
+            effect->expanding || chain.expanding ? chain.expanded : chain.scissor;
         // What "result" holds before this effect writes it: the poison where its passes
         // shade, the zeros (or tiles) of today elsewhere.
-        if (options_.poison) {
-            if (chain.rects)
-                for (const PixelRect& r : *chain.rects) fill_area(cmd, *next, r, *options_.poison);
-            else
-                fill_area(cmd, *next, io.result_scissor, *options_.poison);
+        if (options_.poison)
+            frame.add(effect->label + " poison", {{next, ImageAccess::ColourWrite}}, chain.report,
+                      [this, next, scissor, rects = chain.rects](PassRecording& r) {
+                          if (rects)
+                              for (const PixelRect& rect : *rects)
+                                  fill_area_planned(r.cmd, *next, rect, *options_.poison);
+                          else
+                              fill_area_planned(r.cmd, *next, scissor, *options_.poison);
+                      });
+        for (size_t p = 0; p < effect->passes.size(); ++p) {
+            const EffectPassRuntime& pass = effect->passes[p];
+            EffectIo io;
+            io.previous = current;
+            io.result = next;
+            std::vector<std::pair<GpuImage*, ImageAccess>> uses;
+            for (size_t b = 0; b < pass.inputs.size(); ++b) {
+                const GpuImage* input = effect_pass_input(pass, b, io);
+                if (is_written(input))
+                    uses.emplace_back(const_cast<GpuImage*>(input), ImageAccess::Sampled);
+            }
+            uses.emplace_back(effect_pass_output(pass, io), ImageAccess::ColourWrite);
+            frame.add(
+                pass.label, std::move(uses), chain.report,
+                [this, effect, p, current, next, scissor, rects = chain.rects](PassRecording& r) {
+                    EffectIo io = effect_io(r.time);
+                    io.previous = current;
+                    io.result = next;
+                    io.result_scissor = scissor;
+                    io.result_rects = rects;
+                    record_effect_pass(r.cmd, renderer_, *effect, p, io, *r.report);
+                });
         }
-        record_effect(cmd, renderer_, effect, io, report);
         std::swap(current, next);
     }
     return current;
 }
 
 void Compositor::record_composite(VkCommandBuffer cmd, const FloorStep& step, GpuImage& floor,
-                                  const std::vector<PixelRect>* rects, bool expanding,
-                                  FloorFrameReport& report) {
-    // The floor over the accumulation, only where the floor's stencil says 1 (or, after a
-    // coverage-expanding effect, wherever the floor is not fully transparent). The stencil is
-    // attached again: the barrier makes the tile pass's stencil writes visible to this load.
-    const PixelRect area = expanding ? expansion_areas_[step.floor] : step.scissor;
+                                  const PixelRect& area, const std::vector<PixelRect>* rects,
+                                  bool expanding, FloorFrameReport& report) {
+    // The stencil is attached again, only tested: the tile pass's writes were made visible to
+    // this pass by the barrier the compiled frame planned between them.
     const StencilAttachment stencil{targets_.floor_stencil(), LoadOp::Keep, 0, false};
-    begin_rendering(cmd, area, {&targets_.accumulation(), LoadOp::Keep}, &stencil);
+    begin_rendering_planned(cmd, area, {&targets_.accumulation(), LoadOp::Keep}, &stencil);
     set_scissor(cmd, area);
     bind(cmd, expanding ? HostPass::CompositeByAlpha : HostPass::Composite, floor.view(),
          floor.view(), pipelines_->nearest_sampler());
@@ -246,61 +296,71 @@ void Compositor::record_composite(VkCommandBuffer cmd, const FloorStep& step, Gp
     report.pixels_shaded += composited;
 }
 
-void Compositor::record_global_effects(VkCommandBuffer cmd, FrameStats& stats, double time) {
-    final_accumulation_ = &targets_.accumulation();
+GpuImage* Compositor::add_global_effects(FrameBuilder& frame,
+                                         std::optional<FloorFrameReport>& global) {
     const size_t run = std::min<size_t>(global_effects_.size(), global_effects_run_);
-    if (run == 0) return;
-    FloorFrameReport report;
-    report.floor = UINT32_MAX;
-    report.path = "global";
-    report.why = "global effects on the composite";
-    report.scissor = {0, 0, int64_t(width_), int64_t(height_)};
+    if (run == 0) return &targets_.accumulation();
+    global.emplace();
+    global->floor = UINT32_MAX;
+    global->path = "global";
+    global->why = "global effects on the composite";
+    global->scissor = {0, 0, int64_t(width_), int64_t(height_)};
     // Every pass of a global effect writes every pixel of "result".
     const EffectChain chain{&global_effects_,
                             run,
                             &targets_.accumulation(),
                             targets_.accumulation_pingpong(),
-                            report.scissor,
-                            report.scissor,
+                            global->scissor,
+                            global->scissor,
                             false,
-                            nullptr};
-    GpuImage* current = record_effect_chain(cmd, chain, time, report);
-    final_accumulation_ = current;
-    stats.passes += report.passes;
-    stats.pixels_shaded += report.pixels_shaded;
-    stats.global = report;
+                            nullptr,
+                            ReportIndex(ReportSlot::Global),
+                            "global"};
+    return add_effect_chain(frame, chain);
 }
 
-void Compositor::record_output(VkCommandBuffer cmd, FrameStats& stats) {
-    GpuImage& accumulation = final_accumulation_ ? *final_accumulation_ : targets_.accumulation();
-    GpuImage* floor_image = viewed_floor_ ? viewed_floor_ : targets_.floor_colour();
-    accumulation.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    const bool floor_view = view_reads_floor_target(options_.view) && floor_image;
-    if (floor_view) floor_image->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    const PixelRect all{0, 0, int64_t(width_), int64_t(height_)};
-    begin_rendering(cmd, all, {&targets_.output(), LoadOp::DontCare});  // every pixel written
-    set_scissor(cmd, all);
-    bind(cmd, HostPass::Output, accumulation.view(),
-         floor_view ? floor_image->view() : accumulation.view(), pipelines_->nearest_sampler());
-    OutputPushConstants push;
-    std::copy(scene_.background.begin(), scene_.background.end(), push.background);
-    push.view = uint32_t(options_.view);
-    pipelines_->push(cmd, push);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    vkCmdEndRendering(cmd);
-    if (timer_) timer_->mark(cmd, "output");
-    ++stats.passes;
-    stats.pixels_shaded += all.area();
+void Compositor::add_output(FrameBuilder& frame, GpuImage& accumulation, GpuImage* floor_image) {
+    // The output reads the composite, and in a floor view the active floor's own target too.
+    std::vector<std::pair<GpuImage*, ImageAccess>> uses{{&accumulation, ImageAccess::Sampled}};
+    if (floor_image && floor_image != &accumulation)
+        uses.emplace_back(floor_image, ImageAccess::Sampled);
+    uses.emplace_back(&targets_.output(), ImageAccess::ColourWrite);
+    frame.add(
+        "output", std::move(uses), ReportIndex(ReportSlot::Frame),
+        [this, &accumulation, floor_image](PassRecording& r) {
+            const PixelRect all{0, 0, int64_t(width_), int64_t(height_)};
+            // Every pixel is written: nothing is loaded.
+            begin_rendering_planned(r.cmd, all, {&targets_.output(), LoadOp::DontCare});
+            set_scissor(r.cmd, all);
+            bind(r.cmd, HostPass::Output, accumulation.view(),
+                 floor_image ? floor_image->view() : accumulation.view(),
+                 pipelines_->nearest_sampler());
+            OutputPushConstants push;
+            std::copy(scene_.background.begin(), scene_.background.end(), push.background);
+            push.view = uint32_t(options_.view);
+            pipelines_->push(r.cmd, push);
+            vkCmdDraw(r.cmd, 3, 1, 0, 0);
+            vkCmdEndRendering(r.cmd);
+            if (timer_) timer_->mark(r.cmd, "output");
+            ++r.report->passes;
+            r.report->pixels_shaded += all.area();
+        },
+        true);
 }
 
-void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameStats& stats,
-                              double time) {
-    viewed_floor_ = targets_.floor_colour();
-    if (timer_) timer_->begin(cmd);
-    clear_image(cmd, targets_.accumulation());
-    if (timer_) timer_->mark(cmd, "clear");
+Compositor::FrameShape Compositor::compile_frame(const FramePlan& plan, uint32_t active_floor) {
+    FrameBuilder frame;
+    FrameShape shape;
+    shape.plan = plan;
+    std::vector<FloorFrameReport> reports;
+    frame.add("clear accumulation", {{&targets_.accumulation(), ImageAccess::TransferWrite}},
+              ReportIndex(ReportSlot::Frame), [this](PassRecording& r) {
+                  clear_image_planned(r.cmd, targets_.accumulation());
+                  if (timer_) timer_->mark(r.cmd, "clear");
+              });
     const bool floor_view = view_reads_floor_target(options_.view);
-    const std::vector<FloorStep>& steps = plan.steps;
+    GpuImage* viewed = targets_.floor_colour();
+    const std::vector<FloorStep>& steps = shape.plan.steps;
     for (size_t i = 0; i < steps.size();) {
         if (steps[i].path == FloorPath::Direct) {
             // The run of floors up to the next one with a target (skipped floors record
@@ -309,28 +369,40 @@ void Compositor::record_frame(VkCommandBuffer cmd, const FramePlan& plan, FrameS
             while (options_.plan.merge_direct_floors && end < steps.size() &&
                    steps[end].path != FloorPath::ThroughTarget)
                 ++end;
-            record_floors_direct(cmd, steps, i, end, stats);
+            add_floors_direct(frame, steps, i, end, reports);
             i = end;
             continue;
         }
         const FloorStep& step = steps[i++];
-        FloorFrameReport report = frame_report(step);
+        reports.push_back(frame_report(step));
         if (step.path == FloorPath::ThroughTarget) {
-            const bool is_viewed = floor_view && step.floor == stats.active_floor;
-            record_floor_through_target(cmd, step, is_viewed, time, report);
+            const bool is_viewed = floor_view && step.floor == active_floor;
+            viewed =
+                add_floor_through_target(frame, step, is_viewed, ReportIndex(reports.size() - 1));
         }
-        stats.passes += report.passes;
-        stats.pixels_shaded += report.pixels_shaded;
-        stats.floors.push_back(report);
     }
-    if (floor_view && plan.steps.back().path != FloorPath::ThroughTarget) {
+    if (floor_view && steps.back().path != FloorPath::ThroughTarget) {
         // The active floor drew nothing (it covers no pixel), so its target must read as empty,
         // not as whatever a lower floor left in the shared target.
-        clear_image(cmd, *targets_.floor_colour());
-        viewed_floor_ = targets_.floor_colour();
+        viewed = targets_.floor_colour();
+        frame.add("clear the active floor's target", {{viewed, ImageAccess::TransferWrite}},
+                  ReportIndex(ReportSlot::Frame),
+                  [viewed](PassRecording& r) { clear_image_planned(r.cmd, *viewed); });
     }
-    record_global_effects(cmd, stats, time);
-    record_output(cmd, stats);
+    std::optional<FloorFrameReport> global;
+    GpuImage* accumulation = add_global_effects(frame, global);
+    add_output(frame, *accumulation, floor_view ? viewed : nullptr);
+    shape.final_accumulation = accumulation;
+    shape.viewed_floor = viewed;
+    // Read after the frame: the output, the composite (read_accumulation), in a floor view the
+    // active floor's target (read_active_floor), and the effects' own targets, which keep what
+    // a frame wrote for the next (a plugin that reads one before writing it is caught by the
+    // harness's isolation checks, which must see it).
+    std::vector<const GpuImage*> read_after{&targets_.output(), accumulation,
+                                            floor_view ? viewed : nullptr};
+    for (const GpuImage* image : targets_.effect_targets().images()) read_after.push_back(image);
+    shape.frame = frame.compile(read_after, std::move(reports), std::move(global));
+    return shape;
 }
 
 }  // namespace acetate

@@ -32,6 +32,10 @@ struct FrameStats {
     uint64_t shaders_compiled = 0;   // during this frame
     uint64_t pipelines_created = 0;  // during this frame
     uint64_t barriers = 0;           // pipeline barriers recorded (ResourceCounters)
+    // The compiled frame's passes that ran (host and effect passes, clears included: each is at
+    // most one barrier command), and those culled because nothing read what they write.
+    uint32_t frame_passes = 0;
+    uint32_t frame_passes_culled = 0;
     // Pixels of floor content reaching the composite with a == 0 but rgb != 0, or NaN/Inf,
     // counted on the GPU. A floor drawn directly has only its tiles as content, and tile texels
     // are checked once at load (LoadStats::tile_texel_violations).

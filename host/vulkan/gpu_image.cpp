@@ -187,6 +187,37 @@ void GpuImage::transition(VkCommandBuffer cmd, VkImageLayout layout) {
     layout_ = layout;
 }
 
+void GpuImage::record_barrier(VkCommandBuffer cmd, const ImageTransition* transitions,
+                              size_t count) {
+    constexpr size_t kMostAtOnce = 8;  // a pass touches at most an input set and two attachments
+    VkImageMemoryBarrier2 barriers[kMostAtOnce];
+    for (size_t first = 0; first < count; first += kMostAtOnce) {
+        const size_t n = std::min(kMostAtOnce, count - first);
+        for (size_t i = 0; i < n; ++i) {
+            const ImageTransition& t = transitions[first + i];
+            VkImageMemoryBarrier2& b = barriers[i];
+            b = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+            b.srcStageMask = t.src_stages;
+            b.srcAccessMask = t.src_access;
+            b.dstStageMask = t.dst_stages;
+            b.dstAccessMask = t.dst_access;
+            b.oldLayout = t.image->layout_;
+            b.newLayout = t.layout;
+            b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.image = t.image->image_;
+            b.subresourceRange = {t.image->aspect_, 0, 1, 0, 1};
+            t.image->layout_ = t.layout;
+        }
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.imageMemoryBarrierCount = uint32_t(n);
+        dep.pImageMemoryBarriers = barriers;
+        vkCmdPipelineBarrier2(cmd, &dep);
+        if (VulkanContext* context = transitions[first].image->context_)
+            ++context->counters().barriers_recorded;
+    }
+}
+
 Result<GpuBuffer> GpuBuffer::create(VulkanContext& context, VkDeviceSize size,
                                     VkBufferUsageFlags usage) {
     GpuBuffer out;

@@ -12,6 +12,16 @@
 namespace acetate {
 
 class VulkanContext;
+class GpuImage;
+
+// One image's part of a planned pipeline barrier (render/frame_barriers.cpp): from the stages
+// and accesses that touched it since its last barrier to those that will, into `layout`.
+struct ImageTransition {
+    GpuImage* image = nullptr;
+    VkPipelineStageFlags2 src_stages = 0, dst_stages = 0;
+    VkAccessFlags2 src_access = 0, dst_access = 0;
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+};
 
 // A 2D image with its own memory and one view.
 class GpuImage {
@@ -42,6 +52,11 @@ class GpuImage {
     // Records a barrier to `layout` (full pipeline dependency; the host's passes are few and
     // each depends on the previous one, so finer stages would buy nothing on lavapipe).
     void transition(VkCommandBuffer cmd, VkImageLayout layout);
+    // Records one pipeline barrier holding every transition (at least one), and leaves each
+    // image in its new layout: a compiled frame's barriers before a pass, planned at compile
+    // time, cost one command however many images the pass touches.
+    static void record_barrier(VkCommandBuffer cmd, const ImageTransition* transitions,
+                               size_t count);
 
   private:
     void release();
