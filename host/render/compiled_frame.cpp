@@ -109,8 +109,7 @@ void CompiledFrame::execute(VkCommandBuffer cmd, double time, FrameStats& stats)
 }
 
 void FrameBuilder::add(std::string name, std::vector<std::pair<GpuImage*, ImageAccess>> uses,
-                       ReportIndex report, std::function<void(PassRecording&)> record,
-                       bool sink) {
+                       ReportIndex report, std::function<void(PassRecording&)> record, bool sink) {
     FramePass pass;
     pass.decl.name = std::move(name);
     pass.decl.sink = sink;

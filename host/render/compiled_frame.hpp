@@ -22,8 +22,8 @@ namespace acetate {
 // What a pass is given when it records.
 struct PassRecording {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
-    double time = 0;                     // what effects animate with
-    FloorFrameReport* report = nullptr;  // where its passes and pixels are counted
+    double time = 0;                                  // what effects animate with
+    FloorFrameReport* report = nullptr;               // where its passes and pixels are counted
     std::vector<FloorFrameReport>* floors = nullptr;  // every floor's (a pass of several floors)
 };
 

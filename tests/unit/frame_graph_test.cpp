@@ -62,8 +62,7 @@ TEST(FrameGraph, AWholeClearEndsTheNeedForWhatWasWrittenBefore) {
         pass("output", {{1, A::Sampled}, {0, A::ColourWrite}}, true),
     };
     const FrameGraphPlan plan = compile_frame_graph(p, {true, false});
-    EXPECT_EQ(run(plan, p),
-              (std::vector<std::string>{"clear", "draw", "blend over it", "output"}));
+    EXPECT_EQ(run(plan, p), (std::vector<std::string>{"clear", "draw", "blend over it", "output"}));
 }
 
 TEST(FrameGraph, APingPongStepTransitionsBothImagesInOneBarrier) {
