@@ -75,6 +75,12 @@ CompiledFrame::CompiledFrame(std::vector<FramePass> passes, std::vector<GpuImage
     decls.reserve(passes_.size());
     for (const FramePass& pass : passes_) decls.push_back(pass.decl);
     plan_ = compile_frame_graph(decls, read_after);
+    // The barriers' stages and accesses are the plan's: worked out here once, not per frame.
+    for (const std::vector<ImageBarrier>& batch : plan_.barriers) {
+        std::vector<ImageTransition>& out = transitions_.emplace_back();
+        for (const ImageBarrier& barrier : batch)
+            out.push_back(transition(images_[barrier.image], barrier));
+    }
 }
 
 void CompiledFrame::execute(VkCommandBuffer cmd, double time, FrameStats& stats) const {
@@ -83,15 +89,10 @@ void CompiledFrame::execute(VkCommandBuffer cmd, double time, FrameStats& stats)
     stats.frame_passes = uint32_t(plan_.passes.size());
     stats.frame_passes_culled = uint32_t(plan_.culled.size());
     FloorFrameReport frame;  // the output pass's count, straight into the totals
-    std::vector<ImageTransition> transitions;
     for (size_t i = 0; i < plan_.passes.size(); ++i) {
         const FramePass& pass = passes_[plan_.passes[i]];
-        if (!plan_.barriers[i].empty()) {
-            transitions.clear();
-            for (const ImageBarrier& barrier : plan_.barriers[i])
-                transitions.push_back(transition(images_[barrier.image], barrier));
-            GpuImage::record_barrier(cmd, transitions.data(), transitions.size());
-        }
+        if (!transitions_[i].empty())
+            GpuImage::record_barrier(cmd, transitions_[i].data(), transitions_[i].size());
         PassRecording recording{cmd, time, &frame, &stats.floors};
         if (pass.report >= 0)
             recording.report = &stats.floors[size_t(pass.report)];

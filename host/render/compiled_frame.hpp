@@ -57,6 +57,7 @@ class CompiledFrame {
     std::vector<FramePass> passes_;
     std::vector<GpuImage*> images_;
     FrameGraphPlan plan_;
+    std::vector<std::vector<ImageTransition>> transitions_;  // plan_.barriers in Vulkan terms
     std::vector<FloorFrameReport> reports_;  // in order, counts zero: copied into each frame
     std::optional<FloorFrameReport> global_;
 };
