@@ -1,8 +1,5 @@
 #include "scene/image_io.hpp"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-#include <OpenImageIO/typedesc.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -16,6 +13,7 @@
 #include "core/input_file.hpp"
 #include "core/stderr_capture.hpp"
 #include "scene/exr_header_check.hpp"
+#include "scene/image_codec.hpp"
 #include "scene/png_chunk_check.hpp"
 
 namespace acetate {
@@ -32,47 +30,35 @@ constexpr int64_t kMaxImagePixels = int64_t(1) << 26;
 // The largest finite half-float; larger values would turn into Inf when written to EXR.
 constexpr float kHalfMax = 65504.0f;
 
-// OpenImageIO messages can span lines; ours are one line each.
+// What a decoder printed can span lines; ours are one line each.
 std::string one_line(std::string text) {
     std::replace(text.begin(), text.end(), '\n', ' ');
     std::replace(text.begin(), text.end(), '\r', ' ');
     while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text.empty() ? "unknown OpenImageIO error" : text;
+    return text.empty() ? "unknown decoder error" : text;
 }
 
 Error file_error(ErrorCode code, const fs::path& file, const std::string& what) {
     return make_error(code, fmt::format("{}: {}", file.string(), one_line(what)));
 }
 
-// What OpenImageIO handed back, before Acetate's colour conventions are applied.
+// What the codec handed back, before Acetate's colour conventions are applied.
 struct DecodedPixels {
     ImageRGBA image;
     bool has_alpha = false;
     bool integer_format = false;  // uint8/uint16...: sRGB-encoded colour
-    bool straight_alpha = false;  // OpenImageIO returned unassociated values
+    bool straight_alpha = false;  // unassociated values, as stored
 };
 
-// Opens `file` for decoding from `memory`, its contents as the project's one input reader read
-// them (a regular file, within the size limit), so the decoder never opens a path itself. The
-// few formats whose OpenImageIO reader cannot decode from memory open the path, already
-// checked. OpenImageIO premultiplies straight-alpha files (PNG, TGA, most TIFF) while reading,
-// in the encoded space, which is wrong for an sRGB-encoded image: asking for unassociated alpha
-// gets the values as stored, so that decoding can happen before premultiplying.
-std::unique_ptr<OIIO::ImageInput> open_input(const fs::path& file,
-                                             OIIO::Filesystem::IOMemReader& memory) {
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    if (auto input = OIIO::ImageInput::open(file.string(), &config, &memory)) return input;
-    (void)OIIO::geterror();  // a reader without memory input, or a bad file: the path tells
-    return OIIO::ImageInput::open(file.string(), &config);
-}
-
 // Channel layout rules: 1 = grey, 2 = grey + alpha, 3 = RGB, 4+ = the first four as RGBA.
-void expand_to_rgba(const std::vector<float>& source, int channels, ImageRGBA& image) {
-    const size_t pixel_count = size_t(image.width) * image.height;
+DecodedPixels expand_to_rgba(const DecodedFile& file) {
+    DecodedPixels decoded;
+    decoded.image = ImageRGBA(file.width, file.height);
+    const int channels = file.channels;
+    const size_t pixel_count = size_t(file.width) * file.height;
     for (size_t i = 0; i < pixel_count; ++i) {
-        const float* in = &source[i * size_t(channels)];
-        float* out = &image.pixels[i * 4];
+        const float* in = &file.values[i * size_t(channels)];
+        float* out = &decoded.image.pixels[i * 4];
         if (channels <= 2) {
             out[0] = out[1] = out[2] = in[0];
             out[3] = channels == 2 ? in[1] : 1.0f;
@@ -81,34 +67,9 @@ void expand_to_rgba(const std::vector<float>& source, int channels, ImageRGBA& i
             out[3] = channels >= 4 ? in[3] : 1.0f;
         }
     }
-}
-
-Result<DecodedPixels> read_pixels(OIIO::ImageInput& input, const fs::path& file) {
-    const OIIO::ImageSpec& spec = input.spec();
-    if (spec.deep) return file_error(ErrorCode::ImageDecode, file, "deep images are not supported");
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-        return file_error(ErrorCode::ImageDecode, file, "image has no pixels");
-    if (spec.width > kMaxImageSide || spec.height > kMaxImageSide)
-        return file_error(ErrorCode::ImageDecode, file,
-                          fmt::format("image is {}x{}, larger than {} on a side", spec.width,
-                                      spec.height, kMaxImageSide));
-    if (int64_t(spec.width) * spec.height > kMaxImagePixels)
-        return file_error(ErrorCode::ImageDecode, file,
-                          fmt::format("image is {}x{}, more than {} pixels (8192x8192)", spec.width,
-                                      spec.height, kMaxImagePixels));
-
-    const int channels = std::min(spec.nchannels, 4);
-    std::vector<float> source(size_t(spec.width) * spec.height * channels);
-    // Integer formats come back normalised to [0, 1]; no colour transform happens here.
-    if (!input.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, source.data()))
-        return file_error(ErrorCode::ImageDecode, file, input.geterror());
-
-    DecodedPixels decoded;
-    decoded.image = ImageRGBA(uint32_t(spec.width), uint32_t(spec.height));
-    expand_to_rgba(source, channels, decoded.image);
     decoded.has_alpha = channels == 2 || channels == 4;
-    decoded.integer_format = !spec.format.is_floating_point();
-    decoded.straight_alpha = spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 1;
+    decoded.integer_format = file.integer_format;
+    decoded.straight_alpha = file.straight_alpha;
     return decoded;
 }
 
@@ -148,47 +109,34 @@ void to_linear_premultiplied(DecodedPixels& decoded) {
     }
 }
 
-// Encodes one image in memory with OpenImageIO (`format` is "png" or "openexr"); `pixels` are
-// in `pixel_type`. Nothing touches the disk here: the bytes then go through the project's one
-// checked, atomic writer, so a full disk or a missing folder is an I/O error of the target, and
-// an encoder that would not report a short write cannot hide one.
-Result<std::vector<unsigned char>> encode_with_oiio(const fs::path& file, const char* format,
-                                                    const OIIO::ImageSpec& spec,
-                                                    OIIO::TypeDesc pixel_type, const void* pixels) {
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput memory(bytes);
-    auto output = OIIO::ImageOutput::create(format);
-    if (!output || !output->set_ioproxy(&memory))
-        return file_error(ErrorCode::ImageEncode, file,
-                          fmt::format("cannot encode {}: {}", format, OIIO::geterror()));
-    if (!output->open(file.string(), spec) || !output->write_image(pixel_type, pixels) ||
-        !output->close())
-        return file_error(ErrorCode::ImageEncode, file, output->geterror());
-    return bytes;
-}
-
 Result<std::vector<unsigned char>> encode_exr(const fs::path& file, const ImageRGBA& image) {
+    auto codec = image_codec();
+    if (!codec) return codec.error();
     // Premultiplied linear, as the host holds it; only values beyond the half range are
     // clamped, so that the conversion does not create Inf.
     std::vector<float> pixels(image.pixels);
     for (float& value : pixels)
         if (std::isfinite(value)) value = std::clamp(value, -kHalfMax, kHalfMax);
-    OIIO::ImageSpec spec(int(image.width), int(image.height), 4, OIIO::TypeDesc::HALF);
-    return encode_with_oiio(file, "openexr", spec, OIIO::TypeDesc::FLOAT, pixels.data());
+    std::vector<unsigned char> bytes;
+    std::string why;
+    if (!codec.value()->encode_exr(file.string(), image.width, image.height, pixels.data(), false,
+                                   bytes, why))
+        return file_error(ErrorCode::ImageEncode, file, why);
+    return bytes;
 }
 
 Result<std::vector<unsigned char>> encode_png(const fs::path& file, const ImageRGBA& image) {
+    auto codec = image_codec();
+    if (!codec) return codec.error();
     std::vector<uint8_t> pixels(image.pixels.size());
     for (size_t i = 0; i < image.pixels.size(); i += 4)
         premultiplied_to_srgb8(&image.pixels[i], &pixels[i]);
-    OIIO::ImageSpec spec(int(image.width), int(image.height), 4, OIIO::TypeDesc::UINT8);
-    // Without this OpenImageIO would un-premultiply the already straight values again.
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    // zlib's fastest level: a quarter of a one-shot render's CPU went to compressing at the
-    // default level 6, for files about a tenth smaller (docs/performance.md, "One-shot renders").
-    spec.attribute("png:compressionLevel", 1);
-    return encode_with_oiio(file, "png", spec, OIIO::TypeDesc::UINT8, pixels.data());
+    std::vector<unsigned char> bytes;
+    std::string why;
+    if (!codec.value()->encode_png(file.string(), image.width, image.height, pixels.data(), bytes,
+                                   why))
+        return file_error(ErrorCode::ImageEncode, file, why);
+    return bytes;
 }
 
 }  // namespace
@@ -216,28 +164,26 @@ Result<ImageRGBA> load_image(const fs::path& file, ImageRole role) {
     if (!bytes) return bytes.error();
     ACETATE_TRY(check_exr_header(bytes.value(), file, kMaxImageSide));
     ACETATE_TRY(check_png_chunks(bytes.value(), file));
-    OIIO::Filesystem::IOMemReader memory(bytes->data(), bytes->size());
+    auto codec = image_codec();
+    if (!codec) return codec.error();
     // libpng and others print raw lines of their own before failing; the failure is reported
     // below in one line, so what they printed is dropped then, and passed on as one line when
     // the image decodes anyway (a warning).
     StderrCapture library_output;
-    auto input = open_input(file, memory);
-    if (!input) {
-        const std::string why = OIIO::geterror();
-        library_output.finish();
-        return file_error(ErrorCode::ImageDecode, file, why);
-    }
-    auto decoded = read_pixels(*input, file);
-    input->close();
+    DecodedFile stored;
+    std::string why;
+    const bool ok = codec.value()->decode(file.string(), bytes->data(), bytes->size(),
+                                          {kMaxImageSide, kMaxImagePixels}, stored, why);
     const std::string printed = library_output.finish();
-    if (!decoded) return decoded.error();
+    if (!ok) return file_error(ErrorCode::ImageDecode, file, why);
+    DecodedPixels decoded = expand_to_rgba(stored);
     if (!printed.empty())
         std::fprintf(stderr, "acetate: warning: %s: the decoder said: %s\n", file.c_str(),
                      one_line(printed).c_str());
-    ACETATE_TRY(check_finite(decoded->image, file));
+    ACETATE_TRY(check_finite(decoded.image, file));
     // Masks are data (water depth, roughness...): values stay as stored.
-    if (role == ImageRole::Colour) to_linear_premultiplied(*decoded);
-    return std::move(decoded->image);
+    if (role == ImageRole::Colour) to_linear_premultiplied(decoded);
+    return std::move(decoded.image);
 }
 
 Result<void> save_image(const fs::path& file, const ImageRGBA& image) {

@@ -2,8 +2,6 @@
 // ground showing through the upper floor's gaps, no white fringe at anti-aliased edges, the
 // canvas background where no floor covers, and zero premultiplied violations.
 
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
 
 #include "render_fixture.hpp"
@@ -89,13 +87,7 @@ std::filesystem::path write_fringe_png(const std::filesystem::path& file, uint32
             p[3] = uint8_t(std::lround(a * 255));
         }
     }
-    auto out = OIIO::ImageOutput::create(file.string());
-    OIIO::ImageSpec spec(static_cast<int>(size), static_cast<int>(size), 4, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    out->open(file.string(), spec);
-    out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
-    out->close();
-    return file;
+    return test::write_png8(file, size, size, pixels);
 }
 
 TEST_F(CompositeGate, NoWhiteFringeAtAntiAliasedTileEdges) {

@@ -1,6 +1,5 @@
 #include "test_files.hpp"
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -10,6 +9,8 @@
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
+
+#include "scene/image_codec.hpp"
 
 namespace acetate::test {
 
@@ -32,15 +33,41 @@ std::filesystem::path write_text(const std::filesystem::path& file, const std::s
     return file;
 }
 
-std::filesystem::path write_exr(const std::filesystem::path& file, const ImageRGBA& image) {
-    auto out = OIIO::ImageOutput::create(file.string());
-    if (!out) throw std::runtime_error("cannot create " + file.string());
-    OIIO::ImageSpec spec(int(image.width), int(image.height), 4, OIIO::TypeDesc::FLOAT);
-    spec.attribute("compression", "none");
-    if (!out->open(file.string(), spec) ||
-        !out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
-        throw std::runtime_error("cannot write " + file.string());
+namespace {
+
+// Encoded bytes written as they are, or an exception naming the file.
+std::filesystem::path write_encoded(const std::filesystem::path& file, bool ok,
+                                    const std::vector<unsigned char>& bytes,
+                                    const std::string& why) {
+    if (!ok) throw std::runtime_error("cannot encode " + file.string() + ": " + why);
+    std::ofstream out(file, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    if (!out) throw std::runtime_error("cannot write " + file.string());
     return file;
+}
+
+const ImageCodec& codec() {
+    auto loaded = image_codec();
+    if (!loaded) throw std::runtime_error(loaded.error().message);
+    return *loaded.value();
+}
+
+}  // namespace
+
+std::filesystem::path write_exr(const std::filesystem::path& file, const ImageRGBA& image) {
+    std::vector<unsigned char> bytes;
+    std::string why;
+    const bool ok = codec().encode_exr(file.string(), image.width, image.height,
+                                       image.pixels.data(), true, bytes, why);
+    return write_encoded(file, ok, bytes, why);
+}
+
+std::filesystem::path write_png8(const std::filesystem::path& file, uint32_t width, uint32_t height,
+                                 const std::vector<uint8_t>& rgba8) {
+    std::vector<unsigned char> bytes;
+    std::string why;
+    const bool ok = codec().encode_png(file.string(), width, height, rgba8.data(), bytes, why);
+    return write_encoded(file, ok, bytes, why);
 }
 
 std::string shell_quote(const std::string& text) {

@@ -21,6 +21,9 @@ std::filesystem::path write_text(const std::filesystem::path& file, const std::s
 
 // Writes an image as 32-bit float EXR (premultiplied; exact for any float), returns its path.
 std::filesystem::path write_exr(const std::filesystem::path& file, const ImageRGBA& image);
+// An 8-bit straight-alpha RGBA PNG holding exactly `rgba8`.
+std::filesystem::path write_png8(const std::filesystem::path& file, uint32_t width, uint32_t height,
+                                 const std::vector<uint8_t>& rgba8);
 
 // A scene file with `edit` applied to its JSON, written as `out` with its tile images and masks
 // made absolute, so it loads from any folder; returns `out`. For tests that compare a live or
