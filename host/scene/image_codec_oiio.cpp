@@ -76,6 +76,9 @@ bool decode(const std::string& name, const void* bytes, size_t size, const Decod
 }
 
 // Encodes one image in memory (`format` is "png" or "openexr"); `pixels` are in `pixel_type`.
+// Nothing touches the disk here: the host writes the bytes through its one checked, atomic
+// writer, so a full disk or a missing folder is an I/O error of the target, and an encoder that
+// would not report a short write cannot hide one.
 bool encode(const std::string& name, const char* format, const OIIO::ImageSpec& spec,
             OIIO::TypeDesc pixel_type, const void* pixels, std::vector<unsigned char>& out,
             std::string& error) {

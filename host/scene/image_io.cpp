@@ -109,8 +109,17 @@ void to_linear_premultiplied(DecodedPixels& decoded) {
     }
 }
 
-Result<std::vector<unsigned char>> encode_exr(const fs::path& file, const ImageRGBA& image) {
+// The codec, or why it could not be loaded as an error of `code` (decoding or encoding).
+Result<const ImageCodec*> codec_for(ErrorCode code) {
     auto codec = image_codec();
+    if (codec) return codec;
+    Error error = codec.error();
+    error.code = code;
+    return error;
+}
+
+Result<std::vector<unsigned char>> encode_exr(const fs::path& file, const ImageRGBA& image) {
+    auto codec = codec_for(ErrorCode::ImageEncode);
     if (!codec) return codec.error();
     // Premultiplied linear, as the host holds it; only values beyond the half range are
     // clamped, so that the conversion does not create Inf.
@@ -126,7 +135,7 @@ Result<std::vector<unsigned char>> encode_exr(const fs::path& file, const ImageR
 }
 
 Result<std::vector<unsigned char>> encode_png(const fs::path& file, const ImageRGBA& image) {
-    auto codec = image_codec();
+    auto codec = codec_for(ErrorCode::ImageEncode);
     if (!codec) return codec.error();
     std::vector<uint8_t> pixels(image.pixels.size());
     for (size_t i = 0; i < image.pixels.size(); i += 4)
@@ -164,7 +173,7 @@ Result<ImageRGBA> load_image(const fs::path& file, ImageRole role) {
     if (!bytes) return bytes.error();
     ACETATE_TRY(check_exr_header(bytes.value(), file, kMaxImageSide));
     ACETATE_TRY(check_png_chunks(bytes.value(), file));
-    auto codec = image_codec();
+    auto codec = codec_for(ErrorCode::ImageDecode);
     if (!codec) return codec.error();
     // libpng and others print raw lines of their own before failing; the failure is reported
     // below in one line, so what they printed is dropped then, and passed on as one line when

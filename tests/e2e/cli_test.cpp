@@ -86,6 +86,23 @@ TEST(CliBadInput, ImageThatCannotBeDecoded) {
     EXPECT_FALSE(fs::exists(dir / "out.png"));
 }
 
+// The image formats are a module the host library loads from its own folder
+// (host/scene/image_codec.hpp). A host library copied without it reads no image: the scene's
+// first image is refused in one line naming the module that is missing, nothing is written.
+TEST(CliBadInput, AHostLibraryWithoutItsImageCodecSaysWhichFileIsMissing) {
+    const fs::path dir = write_scene();
+    const fs::path alone = dir / "host-alone";
+    fs::create_directories(alone);
+    fs::copy_file(ACETATE_HOST_LIBRARY, alone / fs::path(ACETATE_HOST_LIBRARY).filename());
+    // Searched before the program's run path, so this copy is the host library it loads.
+    ASSERT_EQ(::setenv("LD_LIBRARY_PATH", alone.c_str(), 1), 0);
+    const CliRun run = run_acetate(dir, "render scene.json -o out.png");
+    ::unsetenv("LD_LIBRARY_PATH");
+    expect_refused(run, {"scene.json", "floors[0].tiles[0].image",
+                         "cannot load the image codec " + (alone / "libacetate-image-codec.so").string()});
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
 TEST(CliBadInput, CanvasLargerThanTheDeviceAllows) {
     SceneText scene;
     scene.canvas = R"("width": 20000, "height": 32)";
