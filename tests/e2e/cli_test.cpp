@@ -98,8 +98,9 @@ TEST(CliBadInput, AHostLibraryWithoutItsImageCodecSaysWhichFileIsMissing) {
     ASSERT_EQ(::setenv("LD_LIBRARY_PATH", alone.c_str(), 1), 0);
     const CliRun run = run_acetate(dir, "render scene.json -o out.png");
     ::unsetenv("LD_LIBRARY_PATH");
-    expect_refused(run, {"scene.json", "floors[0].tiles[0].image",
-                         "cannot load the image codec " + (alone / "libacetate-image-codec.so").string()});
+    expect_refused(
+        run, {"scene.json", "floors[0].tiles[0].image",
+              "cannot load the image codec " + (alone / "libacetate-image-codec.so").string()});
     EXPECT_FALSE(fs::exists(dir / "out.png"));
 }
 
