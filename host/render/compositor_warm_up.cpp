@@ -27,7 +27,10 @@ Result<void> Compositor::warm_pipelines() {
     const PixelRect pixel{0, 0, 1, 1};
     GpuImage& accumulation = targets_.accumulation();
     GpuImage& output = targets_.output();
-    GpuImage* floor_colour = targets_.floor_colour();
+    // The shared images stand for the roles here: the floor's colour target is the first, an
+    // effect's "result" the last (the same image when there is one).
+    std::vector<GpuImage>& shared = targets_.shared();
+    GpuImage* floor_colour = targets_.has(SharedRole::FloorColour) ? &shared.front() : nullptr;
     auto draw_one_pixel = [&](VkCommandBuffer cmd, HostPass pass, GpuImage& target, bool stencil,
                               VkImageView input, VkSampler tile_sampler = VK_NULL_HANDLE) {
         const StencilAttachment stencil_attachment{targets_.floor_stencil(), LoadOp::Clear, 1,
@@ -101,9 +104,8 @@ Result<void> Compositor::warm_pipelines() {
             record_effect(cmd, renderer_, effect, io, ignored);
         };
         for (auto& floor : floor_effects_)
-            for (auto& effect : floor) warm_effect(*effect, *targets_.floor_pingpong());
-        for (auto& effect : global_effects_)
-            warm_effect(*effect, *targets_.accumulation_pingpong());
+            for (auto& effect : floor) warm_effect(*effect, shared.back());
+        for (auto& effect : global_effects_) warm_effect(*effect, shared.back());
         // Poisoned after the warm-up, which wrote a pixel of some targets: until an effect
         // writes it, every texel reads as the poison. Once only: what one floor or frame
         // wrote must stay for the next (a plugin reading it is then caught by the isolation
