@@ -290,6 +290,19 @@ class Compositor {
         std::string name;        // "floor 2", "global": names its clear pass
     };
     GpuImage* add_effect_chain(FrameBuilder& frame, const EffectChain& chain);
+    // One effect's passes, each naming the images it reads and writes: `previous` and `result`
+    // as its chain gives them, "result" drawn within `scissor` (within `rects` when given). The
+    // warm-up's shade one pixel each and are sinks (nothing reads what they draw).
+    struct EffectPasses {
+        EffectInstance* effect = nullptr;
+        GpuImage* previous = nullptr;
+        GpuImage* result = nullptr;
+        PixelRect scissor;
+        const std::vector<PixelRect>* rects = nullptr;
+        ReportIndex report = 0;
+        bool warm_up = false;
+    };
+    void add_effect_passes(FrameBuilder& frame, const EffectPasses& at);
     // The global effects on the composite (their report made when any runs); returns the
     // composite after them.
     GpuImage* add_global_effects(FrameBuilder& frame, std::optional<FloorFrameReport>& global,

@@ -131,7 +131,7 @@ void Compositor::add_floors_direct(FrameBuilder& frame, const std::vector<FloorS
                                                steps[end - 1].floor);
     frame.add(name, {{&targets_.accumulation(), ImageAccess::ColourWrite}},
               ReportIndex(first_report), [this, area, run, first_report, name](PassRecording& r) {
-                  begin_rendering_planned(r.cmd, area, {&targets_.accumulation(), LoadOp::Keep});
+                  begin_rendering(r.cmd, area, {&targets_.accumulation(), LoadOp::Keep});
                   // Over is associative, so drawing each tile over the accumulation equals
                   // compositing the floor's own "tiles over transparent" image over it
                   // (docs/OVERVIEW.md).
@@ -166,7 +166,7 @@ GpuImage* Compositor::add_floor_through_target(FrameBuilder& frame, const FloorS
               {{&colour, ImageAccess::ColourWrite}, {&stencil, ImageAccess::StencilWrite}}, report,
               [this, step, area, &colour](PassRecording& r) {
                   const StencilAttachment stencil{targets_.floor_stencil(), LoadOp::Clear, 0, true};
-                  begin_rendering_planned(r.cmd, area, {&colour, LoadOp::Clear}, &stencil);
+                  begin_rendering(r.cmd, area, {&colour, LoadOp::Clear}, &stencil);
                   draw_tiles(r.cmd, HostPass::TileToTarget, step.floor, step.scissor, *r.report);
                   if (options_.inject) record_injection(r.cmd, step.scissor, *r.report);
                   vkCmdEndRendering(r.cmd);
@@ -216,15 +216,7 @@ GpuImage* Compositor::add_effect_chain(FrameBuilder& frame, const EffectChain& c
     GpuImage* current = chain.current;
     GpuImage* next = chain.next;
     frame.add(chain.name + " clear " + next->name(), {{next, ImageAccess::TransferWrite}},
-              chain.report, [next](PassRecording& r) { clear_image_planned(r.cmd, *next); });
-    // Images a frame writes (the chain's pair, the effects' own targets): an effect's input
-    // among them is a use the graph orders; the others (masks, textures, the blank texture) are
-    // written at load only.
-    const std::vector<GpuImage*> written = targets_.images();
-    auto is_written = [&](const GpuImage* image) {
-        return image == chain.current || image == chain.next ||
-               std::find(written.begin(), written.end(), image) != written.end();
-    };
+              chain.report, [next](PassRecording& r) { clear_image(r.cmd, *next); });
     for (size_t i = 0; i < chain.run; ++i) {
         EffectInstance* effect = (*chain.effects)[i].get();
         const PixelRect scissor =
@@ -236,36 +228,53 @@ GpuImage* Compositor::add_effect_chain(FrameBuilder& frame, const EffectChain& c
                       [this, next, scissor, rects = chain.rects](PassRecording& r) {
                           if (rects)
                               for (const PixelRect& rect : *rects)
-                                  fill_area_planned(r.cmd, *next, rect, *options_.poison);
+                                  fill_area(r.cmd, *next, rect, *options_.poison);
                           else
-                              fill_area_planned(r.cmd, *next, scissor, *options_.poison);
+                              fill_area(r.cmd, *next, scissor, *options_.poison);
                       });
-        for (size_t p = 0; p < effect->passes.size(); ++p) {
-            const EffectPassRuntime& pass = effect->passes[p];
-            EffectIo io;
-            io.previous = current;
-            io.result = next;
-            std::vector<std::pair<GpuImage*, ImageAccess>> uses;
-            for (size_t b = 0; b < pass.inputs.size(); ++b) {
-                const GpuImage* input = effect_pass_input(pass, b, io);
-                if (is_written(input))
-                    uses.emplace_back(const_cast<GpuImage*>(input), ImageAccess::Sampled);
-            }
-            uses.emplace_back(effect_pass_output(pass, io), ImageAccess::ColourWrite);
-            frame.add(
-                pass.label, std::move(uses), chain.report,
-                [this, effect, p, current, next, scissor, rects = chain.rects](PassRecording& r) {
-                    EffectIo io = effect_io(r.time);
-                    io.previous = current;
-                    io.result = next;
-                    io.result_scissor = scissor;
-                    io.result_rects = rects;
-                    record_effect_pass(r.cmd, renderer_, *effect, p, io, *r.report);
-                });
-        }
+        add_effect_passes(frame, {effect, current, next, scissor, chain.rects, chain.report});
         std::swap(current, next);
     }
     return current;
+}
+
+void Compositor::add_effect_passes(FrameBuilder& frame, const EffectPasses& at) {
+    // Images a frame writes (the pair, the effects' own targets): an effect's input among them
+    // is a use the graph orders; the others (masks, textures, the blank texture) are written at
+    // load only.
+    const std::vector<GpuImage*> written = targets_.images();
+    auto is_written = [&](const GpuImage* image) {
+        return image == at.previous || image == at.result ||
+               std::find(written.begin(), written.end(), image) != written.end();
+    };
+    for (size_t p = 0; p < at.effect->passes.size(); ++p) {
+        const EffectPassRuntime& pass = at.effect->passes[p];
+        EffectIo io;
+        io.previous = at.previous;
+        io.result = at.result;
+        std::vector<std::pair<GpuImage*, ImageAccess>> uses;
+        for (size_t b = 0; b < pass.inputs.size(); ++b) {
+            const GpuImage* input = effect_pass_input(pass, b, io);
+            if (is_written(input))
+                uses.emplace_back(const_cast<GpuImage*>(input), ImageAccess::Sampled);
+        }
+        uses.emplace_back(effect_pass_output(pass, io), ImageAccess::ColourWrite);
+        frame.add(
+            pass.label, std::move(uses), at.report,
+            [this, at, p](PassRecording& r) {
+                EffectIo io = effect_io(r.time);
+                io.previous = at.previous;
+                io.result = at.result;
+                io.result_scissor = at.scissor;
+                io.result_rects = at.rects;
+                if (at.warm_up) {
+                    io.timer = nullptr;
+                    io.warm_up = true;
+                }
+                record_effect_pass(r.cmd, renderer_, *at.effect, p, io, *r.report);
+            },
+            at.warm_up);
+    }
 }
 
 void Compositor::record_composite(VkCommandBuffer cmd, const FloorStep& step, GpuImage& floor,
@@ -274,7 +283,7 @@ void Compositor::record_composite(VkCommandBuffer cmd, const FloorStep& step, Gp
     // The stencil is attached again, only tested: the tile pass's writes were made visible to
     // this pass by the barrier the compiled frame planned between them.
     const StencilAttachment stencil{targets_.floor_stencil(), LoadOp::Keep, 0, false};
-    begin_rendering_planned(cmd, area, {&targets_.accumulation(), LoadOp::Keep}, &stencil);
+    begin_rendering(cmd, area, {&targets_.accumulation(), LoadOp::Keep}, &stencil);
     set_scissor(cmd, area);
     bind(cmd, expanding ? HostPass::CompositeByAlpha : HostPass::Composite, floor.view(),
          floor.view(), pipelines_->nearest_sampler());
@@ -333,7 +342,7 @@ void Compositor::add_output(FrameBuilder& frame, GpuImage& accumulation, GpuImag
         [this, &accumulation, floor_image](PassRecording& r) {
             const PixelRect all{0, 0, int64_t(width_), int64_t(height_)};
             // Every pixel is written: nothing is loaded.
-            begin_rendering_planned(r.cmd, all, {&targets_.output(), LoadOp::DontCare});
+            begin_rendering(r.cmd, all, {&targets_.output(), LoadOp::DontCare});
             set_scissor(r.cmd, all);
             bind(r.cmd, HostPass::Output, accumulation.view(),
                  floor_image ? floor_image->view() : accumulation.view(),
@@ -357,7 +366,7 @@ Compositor::FrameBuild Compositor::build_frame(const FramePlan& plan, uint32_t a
     FrameBuilder& frame = out.builder;
     frame.add("clear accumulation", {{&targets_.accumulation(), ImageAccess::TransferWrite}},
               ReportIndex(ReportSlot::Frame), [this](PassRecording& r) {
-                  clear_image_planned(r.cmd, targets_.accumulation());
+                  clear_image(r.cmd, targets_.accumulation());
                   if (timer_) timer_->mark(r.cmd, "clear");
               });
     const bool floor_view = view_reads_floor_target(options_.view);
@@ -389,7 +398,7 @@ Compositor::FrameBuild Compositor::build_frame(const FramePlan& plan, uint32_t a
         viewed = roles[SharedRole::FloorColour];
         frame.add("clear the active floor's target", {{viewed, ImageAccess::TransferWrite}},
                   ReportIndex(ReportSlot::Frame),
-                  [viewed](PassRecording& r) { clear_image_planned(r.cmd, *viewed); });
+                  [viewed](PassRecording& r) { clear_image(r.cmd, *viewed); });
     }
     GpuImage* accumulation = add_global_effects(frame, out.global, roles);
     add_output(frame, *accumulation, floor_view ? viewed : nullptr);
