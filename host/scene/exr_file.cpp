@@ -105,7 +105,7 @@ void write_half(uint32_t width, uint32_t height, const float* rgba,
     for (size_t i = 0; i < pixels.size(); ++i)
         pixels[i] = Imf::Rgba(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2], rgba[i * 4 + 3]);
     MemoryOutput output(bytes);
-    Imf::Header header(int(width), int(height));
+    Imf::Header header(static_cast<int>(width), static_cast<int>(height));
     header.compression() = Imf::ZIP_COMPRESSION;
     Imf::RgbaOutputFile file(output, header, Imf::WRITE_RGBA, kNoThreads);
     file.setFrameBuffer(pixels.data(), 1, width);
@@ -115,7 +115,7 @@ void write_half(uint32_t width, uint32_t height, const float* rgba,
 void write_float(uint32_t width, uint32_t height, const float* rgba,
                  std::vector<unsigned char>& bytes) {
     MemoryOutput output(bytes);
-    Imf::Header header(int(width), int(height));
+    Imf::Header header(static_cast<int>(width), static_cast<int>(height));
     header.compression() = Imf::NO_COMPRESSION;
     const char* names[4] = {"R", "G", "B", "A"};
     for (const char* name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
