@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The harbour frame of two `acetate` builds side by side in one run: each run is a fresh
 # process per build, alternating A, B, A, B, ... so the machine's noise falls on both alike.
-# Prints each build's median frame time per floor over the runs and the ratio B / A, and the
-# passes and pipeline barriers each recorded per frame.
+# Prints each build's median frame time per floor over the runs and the ratio B / A, the
+# passes and pipeline barriers each recorded per frame, and the render targets each held.
 #
 #   A="env LD_LIBRARY_PATH=/tmp/before/lib /tmp/before/bin/acetate" B=build/host/acetate \
 #       benchmarks/frame_ab.sh                   # RUNS=7 by default
@@ -52,4 +52,10 @@ print("|---|---|---|---|---|---|")
 for floor in a:
     print(f"| {floor} | {a[floor]:.2f} | {b[floor]:.2f} | {b[floor] / a[floor]:.3f} "
           f"| {a_counts[floor][0]}, {b_counts[floor][0]} | {a_counts[floor][1]}, {b_counts[floor][1]} |")
+def held(name):
+    targets = json.load(open(f"{work}/{name}-1.json"))["render_targets"]
+    return len(targets), sum(t["bytes"] for t in targets) / 2**20
+for name in ("A", "B"):
+    count, mib = held(name)
+    print(f"render targets held by {name}: {count}, {mib:.1f} MiB")
 PY

@@ -130,13 +130,37 @@ uint32_t FrameBuilder::id(GpuImage* image) {
     return uint32_t(images_.size() - 1);
 }
 
-CompiledFrame FrameBuilder::compile(const std::vector<const GpuImage*>& read_after,
-                                    std::vector<FloorFrameReport> reports,
-                                    std::optional<FloorFrameReport> global) {
+std::vector<bool> FrameBuilder::read_flags(const std::vector<const GpuImage*>& read_after) const {
     std::vector<bool> read(images_.size(), false);
     for (const GpuImage* image : read_after)
         for (size_t i = 0; i < images_.size(); ++i)
             if (images_[i] == image) read[i] = true;
+    return read;
+}
+
+FrameGraphPlan FrameBuilder::plan(const std::vector<const GpuImage*>& read_after) const {
+    std::vector<FramePassDecl> decls;
+    decls.reserve(passes_.size());
+    for (const FramePass& pass : passes_) decls.push_back(pass.decl);
+    return compile_frame_graph(decls, read_flags(read_after));
+}
+
+void FrameBuilder::drop(const std::vector<uint32_t>& passes) {
+    std::vector<bool> dropped(passes_.size(), false);
+    for (uint32_t index : passes) dropped.at(index) = true;
+    size_t kept = 0;
+    for (size_t i = 0; i < passes_.size(); ++i) {
+        if (dropped[i]) continue;
+        if (kept != i) passes_[kept] = std::move(passes_[i]);  // not onto itself: that empties it
+        ++kept;
+    }
+    passes_.resize(kept);
+}
+
+CompiledFrame FrameBuilder::compile(const std::vector<const GpuImage*>& read_after,
+                                    std::vector<FloorFrameReport> reports,
+                                    std::optional<FloorFrameReport> global) {
+    const std::vector<bool> read = read_flags(read_after);
     return CompiledFrame(std::move(passes_), std::move(images_), read, std::move(reports),
                          std::move(global));
 }

@@ -72,6 +72,15 @@ class FrameBuilder {
     CompiledFrame compile(const std::vector<const GpuImage*>& read_after,
                           std::vector<FloorFrameReport> reports,
                           std::optional<FloorFrameReport> global);
+    // The plan alone (which passes run, each image's first and last use), for a frame built to
+    // learn when its images are used and then built again over other images.
+    FrameGraphPlan plan(const std::vector<const GpuImage*>& read_after) const;
+    // Removes the passes at these indices (in the order they were added), before compile().
+    void drop(const std::vector<uint32_t>& passes);
+    // Every image named so far: its index is its number in the plan.
+    const std::vector<GpuImage*>& images() const { return images_; }
+    // One flag per image: whether `read_after` names it.
+    std::vector<bool> read_flags(const std::vector<const GpuImage*>& read_after) const;
 
   private:
     uint32_t id(GpuImage* image);

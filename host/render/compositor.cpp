@@ -27,13 +27,15 @@ Result<FrameStats> Compositor::render(uint32_t active_floor, double time) {
             fmt::format("{}: active floor {} does not exist (the scene has {} "
                         "floors, 0..{})",
                         scene_.file.string(), active_floor, floor_count(), floor_count() - 1));
-    if (view_reads_floor_target(options_.view) && !targets_.floor_colour())
+    if (view_reads_floor_target(options_.view) && !targets_.has(SharedRole::FloorColour))
         return make_error(ErrorCode::InvalidInput,
                           fmt::format("view \"{}\" needs a floor target; load the scene with it",
                                       to_string(options_.view)));
     const auto start = std::chrono::steady_clock::now();
     const ResourceCounters before = context_.counters();
-    const FrameShape& shape = frame_for(active_floor);
+    auto compiled = frame_for(active_floor);
+    if (!compiled) return compiled.error();
+    const FrameShape& shape = *compiled.value();
     last_plan_ = shape.plan;
     final_accumulation_ = shape.final_accumulation;
     viewed_floor_ = shape.viewed_floor;
@@ -67,16 +69,18 @@ Result<FrameStats> Compositor::render(uint32_t active_floor, double time) {
     return stats;
 }
 
-const Compositor::FrameShape& Compositor::frame_for(uint32_t active_floor) {
+Result<const Compositor::FrameShape*> Compositor::frame_for(uint32_t active_floor) {
     const FrameKey key{active_floor, options_.view, effects_enabled_, floor_effects_run_,
                        global_effects_run_};
-    if (auto found = frames_.find(key); found != frames_.end()) return found->second;
+    if (auto found = frames_.find(key); found != frames_.end()) return &found->second;
     PlanOptions plan_options = options_.plan;
     if (view_reads_floor_target(options_.view)) plan_options.force_target_floor = active_floor;
     if (options_.inject) plan_options.draw_direct = false;  // the hook acts like an effect
     const FramePlan plan = plan_frame(width_, height_, geometry_, active_floor, plan_options);
+    auto shape = compile_frame(plan, active_floor);
+    if (!shape) return shape.error();
     ++frames_compiled_;
-    return frames_.emplace(key, compile_frame(plan, active_floor)).first->second;
+    return &frames_.emplace(key, std::move(shape.value())).first->second;
 }
 
 Result<ImageRGBA> Compositor::read_output() {

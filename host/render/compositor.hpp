@@ -251,16 +251,28 @@ class Compositor {
     };
     // The compiled frame for floors 0..active_floor as the compositor stands (compositor.cpp):
     // planned and compiled on first use, then kept until invalidate_frames().
-    const FrameShape& frame_for(uint32_t active_floor);
+    Result<const FrameShape*> frame_for(uint32_t active_floor);
     void invalidate_frames() { frames_.clear(); }
-    FrameShape compile_frame(const FramePlan& plan, uint32_t active_floor);
+    // A frame's passes over the images `roles` gives the shared roles, not yet compiled.
+    struct FrameBuild {
+        FrameBuilder builder;
+        std::vector<FloorFrameReport> reports;
+        std::optional<FloorFrameReport> global;
+        GpuImage* final_accumulation = nullptr;
+        GpuImage* viewed_floor = nullptr;
+        std::vector<const GpuImage*> read_after;  // read after the frame (nulls ignored)
+    };
+    FrameBuild build_frame(const FramePlan& plan, uint32_t active_floor, const RoleImages& roles);
+    // The frame built once to learn when each role is used, then again over the shared images
+    // those spans allow, and compiled.
+    Result<FrameShape> compile_frame(const FramePlan& plan, uint32_t active_floor);
     // Steps [first, end): floors drawn directly (and skipped ones), in one rendering pass.
     void add_floors_direct(FrameBuilder& frame, const std::vector<FloorStep>& steps, size_t first,
                            size_t end, std::vector<FloorFrameReport>& reports);
     // Tiles with the stencil, the floor's effects, its composite; returns the floor's image
     // after its effects.
     GpuImage* add_floor_through_target(FrameBuilder& frame, const FloorStep& step, bool clear_all,
-                                       ReportIndex report);
+                                       ReportIndex report, const RoleImages& roles);
     // One chain of effects, a floor's or the global ones: `run` effects in scene order, each
     // reading the image the one before it wrote (the first reads `current`) and writing the
     // other image of the pair, which starts transparent; returns the image the last one wrote.
@@ -278,9 +290,23 @@ class Compositor {
         std::string name;        // "floor 2", "global": names its clear pass
     };
     GpuImage* add_effect_chain(FrameBuilder& frame, const EffectChain& chain);
+    // One effect's passes, each naming the images it reads and writes: `previous` and `result`
+    // as its chain gives them, "result" drawn within `scissor` (within `rects` when given). The
+    // warm-up's shade one pixel each and are sinks (nothing reads what they draw).
+    struct EffectPasses {
+        EffectInstance* effect = nullptr;
+        GpuImage* previous = nullptr;
+        GpuImage* result = nullptr;
+        PixelRect scissor;
+        const std::vector<PixelRect>* rects = nullptr;
+        ReportIndex report = 0;
+        bool warm_up = false;
+    };
+    void add_effect_passes(FrameBuilder& frame, const EffectPasses& at);
     // The global effects on the composite (their report made when any runs); returns the
     // composite after them.
-    GpuImage* add_global_effects(FrameBuilder& frame, std::optional<FloorFrameReport>& global);
+    GpuImage* add_global_effects(FrameBuilder& frame, std::optional<FloorFrameReport>& global,
+                                 const RoleImages& roles);
     void add_output(FrameBuilder& frame, GpuImage& accumulation, GpuImage* floor_image);
     void record_injection(VkCommandBuffer cmd, const PixelRect& scissor, FloorFrameReport& report);
     void record_composite(VkCommandBuffer cmd, const FloorStep& step, GpuImage& floor,

@@ -211,21 +211,41 @@ Result<void> Compositor::view_masks() {
     // texel centre with fixed-point weights that are not exactly 1 and 0.
     const VkSampler sampler =
         view_.pixel_aligned() ? pipelines_->nearest_sampler() : pipelines_->linear_sampler();
-    ACETATE_TRY(context_.submit_and_wait([&](VkCommandBuffer cmd) {
-        clear_image(cmd, *view_blank_mask_);
-        view_blank_mask_->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        for (uint32_t f = 0; f < floor_count(); ++f)
-            for (const auto& [kind, scene_mask] : resources_->floors()[f].masks) {
-                GpuImage& out = view_masks_[f].at(kind);
-                begin_rendering(cmd, all, {&out, LoadOp::DontCare});  // every pixel written
-                set_scissor(cmd, all);
-                bind(cmd, HostPass::MaskView, scene_mask.view(), scene_mask.view(), sampler);
-                pipelines_->push(cmd, push);
-                vkCmdDraw(cmd, 3, 1, 0, 0);
-                vkCmdEndRendering(cmd);
-                out.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-            }
-    }));
+    // A compiled frame of its own (render/compiled_frame.hpp): the barriers are planned.
+    FrameBuilder frame;
+    GpuImage* blank = &*view_blank_mask_;
+    frame.add(
+        "clear " + blank->name(), {{blank, ImageAccess::TransferWrite}},
+        ReportIndex(ReportSlot::Frame), [blank](PassRecording& r) { clear_image(r.cmd, *blank); },
+        true);
+    std::vector<std::pair<GpuImage*, ImageAccess>> sampled{{blank, ImageAccess::Sampled}};
+    for (uint32_t f = 0; f < floor_count(); ++f)
+        for (const auto& [kind, scene_mask] : resources_->floors()[f].masks) {
+            GpuImage* out = &view_masks_[f].at(kind);
+            const GpuImage* in = &scene_mask;
+            sampled.emplace_back(out, ImageAccess::Sampled);
+            frame.add(
+                "resample " + out->name(), {{out, ImageAccess::ColourWrite}},
+                ReportIndex(ReportSlot::Frame),
+                [this, out, in, all, push, sampler](PassRecording& r) {
+                    begin_rendering(r.cmd, all, {out, LoadOp::DontCare});  // every pixel written
+                    set_scissor(r.cmd, all);
+                    bind(r.cmd, HostPass::MaskView, in->view(), in->view(), sampler);
+                    pipelines_->push(r.cmd, push);
+                    vkCmdDraw(r.cmd, 3, 1, 0, 0);
+                    vkCmdEndRendering(r.cmd);
+                },
+                true);
+        }
+    // Frames sample the masks without naming them (they are written only here and at load), so
+    // this one leaves them in the layout of a sampled image: a pass of barriers alone.
+    frame.add(
+        "masks ready to sample", std::move(sampled), ReportIndex(ReportSlot::Frame),
+        [](PassRecording&) {}, true);
+    const CompiledFrame compiled = frame.compile({}, {}, std::nullopt);
+    FrameStats ignored;
+    ACETATE_TRY(
+        context_.submit_and_wait([&](VkCommandBuffer cmd) { compiled.execute(cmd, 0, ignored); }));
     bind_all();
     return {};
 }

@@ -151,7 +151,7 @@ Result<std::unique_ptr<Compositor>> Compositor::load(Renderer& renderer, const S
     ACETATE_TRY(out->warm_pipelines());
     if (options.gpu_timings) out->create_timer();
     // Every active floor's frame in the view loaded with, compiled now: a frame only runs one.
-    for (uint32_t f = 0; f < out->floor_count(); ++f) out->frame_for(f);
+    for (uint32_t f = 0; f < out->floor_count(); ++f) ACETATE_TRY(out->frame_for(f));
 
     const ResourceCounters used = context.counters() - before;
     out->load_stats_ = {milliseconds_since(start), used.images_loaded,
@@ -179,6 +179,7 @@ FrameTargetNeeds Compositor::target_needs() const {
                                       [](const auto& f) { return !f.empty(); });
     needs.global_effects = !global_effects_.empty();
     needs.floor_count = resources_->floors().size();
+    needs.share_roles = options_.plan.share_targets;
     return needs;
 }
 
@@ -186,7 +187,7 @@ FrameTargetNeeds Compositor::target_needs() const {
 Result<void> Compositor::ensure_host_pipelines() {
     std::vector<HostPass> passes{HostPass::Output};
     if (options_.plan.draw_direct) passes.push_back(HostPass::TileToAccum);
-    if (targets_.floor_colour()) {
+    if (targets_.has(SharedRole::FloorColour)) {
         passes.push_back(HostPass::TileToTarget);
         passes.push_back(HostPass::Composite);
         for (uint32_t f = 0; f < floor_count(); ++f)

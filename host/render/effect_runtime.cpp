@@ -87,23 +87,6 @@ GpuImage* effect_pass_output(const EffectPassRuntime& pass, const EffectIo& io) 
     return pass.target ? pass.target : io.result;
 }
 
-void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& instance,
-                   const EffectIo& io, FloorFrameReport& report) {
-    for (size_t p = 0; p < instance.passes.size(); ++p) {
-        const EffectPassRuntime& pass = instance.passes[p];
-        for (size_t i = 0; i < pass.inputs.size(); ++i) {
-            const GpuImage* image = effect_pass_input(pass, i, io);
-            if (image->layout() != VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-                const_cast<GpuImage*>(image)->transition(cmd,
-                                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        }
-        GpuImage* output = effect_pass_output(pass, io);
-        output->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-        record_effect_pass(cmd, renderer, instance, p, io, report);
-        output->transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    }
-}
-
 void record_effect_pass(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& instance,
                         size_t index, const EffectIo& io, FloorFrameReport& report) {
     EffectPipelines& pipelines = renderer.effect_pipelines();
@@ -149,7 +132,7 @@ void record_effect_pass(VkCommandBuffer cmd, Renderer& renderer, EffectInstance&
             i >= pass.inputs.size() ? &pipelines.blank_texture() : effect_pass_input(pass, i, io);
         images[i] = {pipelines.sampler(), image->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     }
-    begin_rendering_planned(cmd, scissor, {output, LoadOp::Keep});
+    begin_rendering(cmd, scissor, {output, LoadOp::Keep});
     set_viewport_and_scissor(cmd, output->width(), output->height(), scissor);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.pipeline);
     const EffectViewPushConstants view{

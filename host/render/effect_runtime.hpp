@@ -162,9 +162,5 @@ GpuImage* effect_pass_output(const EffectPassRuntime& pass, const EffectIo& io);
 // shades into `report`. Looks up no name and allocates nothing.
 void record_effect_pass(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& instance,
                         size_t index, const EffectIo& io, FloorFrameReport& report);
-// Every pass of an instance, each with its own transitions: outside a compiled frame (the
-// load's warm-up).
-void record_effect(VkCommandBuffer cmd, Renderer& renderer, EffectInstance& instance,
-                   const EffectIo& io, FloorFrameReport& report);
 
 }  // namespace acetate

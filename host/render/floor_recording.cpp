@@ -131,7 +131,7 @@ void Compositor::add_floors_direct(FrameBuilder& frame, const std::vector<FloorS
                                                steps[end - 1].floor);
     frame.add(name, {{&targets_.accumulation(), ImageAccess::ColourWrite}},
               ReportIndex(first_report), [this, area, run, first_report, name](PassRecording& r) {
-                  begin_rendering_planned(r.cmd, area, {&targets_.accumulation(), LoadOp::Keep});
+                  begin_rendering(r.cmd, area, {&targets_.accumulation(), LoadOp::Keep});
                   // Over is associative, so drawing each tile over the accumulation equals
                   // compositing the floor's own "tiles over transparent" image over it
                   // (docs/OVERVIEW.md).
@@ -145,8 +145,9 @@ void Compositor::add_floors_direct(FrameBuilder& frame, const std::vector<FloorS
 }
 
 GpuImage* Compositor::add_floor_through_target(FrameBuilder& frame, const FloorStep& step,
-                                               bool clear_all, ReportIndex report) {
-    GpuImage& colour = *targets_.floor_colour();
+                                               bool clear_all, ReportIndex report,
+                                               const RoleImages& roles) {
+    GpuImage& colour = *roles[SharedRole::FloorColour];
     GpuImage& stencil = *targets_.floor_stencil();
     const bool expanding = expands(step.floor);
     // Where the effects' "result" passes and the composite draw: the tiles' union as rects
@@ -163,10 +164,9 @@ GpuImage* Compositor::add_floor_through_target(FrameBuilder& frame, const FloorS
         clear_all ? PixelRect{0, 0, int64_t(width_), int64_t(height_)} : step.scissor;
     frame.add(fmt::format("floor {} tiles", step.floor),
               {{&colour, ImageAccess::ColourWrite}, {&stencil, ImageAccess::StencilWrite}}, report,
-              [this, step, area](PassRecording& r) {
+              [this, step, area, &colour](PassRecording& r) {
                   const StencilAttachment stencil{targets_.floor_stencil(), LoadOp::Clear, 0, true};
-                  begin_rendering_planned(r.cmd, area, {targets_.floor_colour(), LoadOp::Clear},
-                                          &stencil);
+                  begin_rendering(r.cmd, area, {&colour, LoadOp::Clear}, &stencil);
                   draw_tiles(r.cmd, HostPass::TileToTarget, step.floor, step.scissor, *r.report);
                   if (options_.inject) record_injection(r.cmd, step.scissor, *r.report);
                   vkCmdEndRendering(r.cmd);
@@ -179,7 +179,7 @@ GpuImage* Compositor::add_floor_through_target(FrameBuilder& frame, const FloorS
         // An expanding effect (or any effect of a floor that has one) writes where the floor's
         // coverage may grow to; the others within the floor's scissor.
         const EffectChain chain{&effects,     std::min<size_t>(effects.size(), floor_effects_run_),
-                                &colour,      targets_.floor_pingpong(),
+                                &colour,      roles[SharedRole::FloorPingpong],
                                 step.scissor, expansion_areas_[step.floor],
                                 expanding,    rects,
                                 report,       fmt::format("floor {}", step.floor)};
@@ -216,13 +216,7 @@ GpuImage* Compositor::add_effect_chain(FrameBuilder& frame, const EffectChain& c
     GpuImage* current = chain.current;
     GpuImage* next = chain.next;
     frame.add(chain.name + " clear " + next->name(), {{next, ImageAccess::TransferWrite}},
-              chain.report, [next](PassRecording& r) { clear_image_planned(r.cmd, *next); });
-    // Images a frame writes: an effect's input among them is a use the graph orders; the
-    // others (masks, textures, the blank texture) are written at load only.
-    const std::vector<GpuImage*> written = targets_.images();
-    auto is_written = [&](const GpuImage* image) {
-        return std::find(written.begin(), written.end(), image) != written.end();
-    };
+              chain.report, [next](PassRecording& r) { clear_image(r.cmd, *next); });
     for (size_t i = 0; i < chain.run; ++i) {
         EffectInstance* effect = (*chain.effects)[i].get();
         const PixelRect scissor =
@@ -234,36 +228,53 @@ GpuImage* Compositor::add_effect_chain(FrameBuilder& frame, const EffectChain& c
                       [this, next, scissor, rects = chain.rects](PassRecording& r) {
                           if (rects)
                               for (const PixelRect& rect : *rects)
-                                  fill_area_planned(r.cmd, *next, rect, *options_.poison);
+                                  fill_area(r.cmd, *next, rect, *options_.poison);
                           else
-                              fill_area_planned(r.cmd, *next, scissor, *options_.poison);
+                              fill_area(r.cmd, *next, scissor, *options_.poison);
                       });
-        for (size_t p = 0; p < effect->passes.size(); ++p) {
-            const EffectPassRuntime& pass = effect->passes[p];
-            EffectIo io;
-            io.previous = current;
-            io.result = next;
-            std::vector<std::pair<GpuImage*, ImageAccess>> uses;
-            for (size_t b = 0; b < pass.inputs.size(); ++b) {
-                const GpuImage* input = effect_pass_input(pass, b, io);
-                if (is_written(input))
-                    uses.emplace_back(const_cast<GpuImage*>(input), ImageAccess::Sampled);
-            }
-            uses.emplace_back(effect_pass_output(pass, io), ImageAccess::ColourWrite);
-            frame.add(
-                pass.label, std::move(uses), chain.report,
-                [this, effect, p, current, next, scissor, rects = chain.rects](PassRecording& r) {
-                    EffectIo io = effect_io(r.time);
-                    io.previous = current;
-                    io.result = next;
-                    io.result_scissor = scissor;
-                    io.result_rects = rects;
-                    record_effect_pass(r.cmd, renderer_, *effect, p, io, *r.report);
-                });
-        }
+        add_effect_passes(frame, {effect, current, next, scissor, chain.rects, chain.report});
         std::swap(current, next);
     }
     return current;
+}
+
+void Compositor::add_effect_passes(FrameBuilder& frame, const EffectPasses& at) {
+    // Images a frame writes (the pair, the effects' own targets): an effect's input among them
+    // is a use the graph orders; the others (masks, textures, the blank texture) are written at
+    // load only.
+    const std::vector<GpuImage*> written = targets_.images();
+    auto is_written = [&](const GpuImage* image) {
+        return image == at.previous || image == at.result ||
+               std::find(written.begin(), written.end(), image) != written.end();
+    };
+    for (size_t p = 0; p < at.effect->passes.size(); ++p) {
+        const EffectPassRuntime& pass = at.effect->passes[p];
+        EffectIo io;
+        io.previous = at.previous;
+        io.result = at.result;
+        std::vector<std::pair<GpuImage*, ImageAccess>> uses;
+        for (size_t b = 0; b < pass.inputs.size(); ++b) {
+            const GpuImage* input = effect_pass_input(pass, b, io);
+            if (is_written(input))
+                uses.emplace_back(const_cast<GpuImage*>(input), ImageAccess::Sampled);
+        }
+        uses.emplace_back(effect_pass_output(pass, io), ImageAccess::ColourWrite);
+        frame.add(
+            pass.label, std::move(uses), at.report,
+            [this, at, p](PassRecording& r) {
+                EffectIo io = effect_io(r.time);
+                io.previous = at.previous;
+                io.result = at.result;
+                io.result_scissor = at.scissor;
+                io.result_rects = at.rects;
+                if (at.warm_up) {
+                    io.timer = nullptr;
+                    io.warm_up = true;
+                }
+                record_effect_pass(r.cmd, renderer_, *at.effect, p, io, *r.report);
+            },
+            at.warm_up);
+    }
 }
 
 void Compositor::record_composite(VkCommandBuffer cmd, const FloorStep& step, GpuImage& floor,
@@ -272,7 +283,7 @@ void Compositor::record_composite(VkCommandBuffer cmd, const FloorStep& step, Gp
     // The stencil is attached again, only tested: the tile pass's writes were made visible to
     // this pass by the barrier the compiled frame planned between them.
     const StencilAttachment stencil{targets_.floor_stencil(), LoadOp::Keep, 0, false};
-    begin_rendering_planned(cmd, area, {&targets_.accumulation(), LoadOp::Keep}, &stencil);
+    begin_rendering(cmd, area, {&targets_.accumulation(), LoadOp::Keep}, &stencil);
     set_scissor(cmd, area);
     bind(cmd, expanding ? HostPass::CompositeByAlpha : HostPass::Composite, floor.view(),
          floor.view(), pipelines_->nearest_sampler());
@@ -297,7 +308,8 @@ void Compositor::record_composite(VkCommandBuffer cmd, const FloorStep& step, Gp
 }
 
 GpuImage* Compositor::add_global_effects(FrameBuilder& frame,
-                                         std::optional<FloorFrameReport>& global) {
+                                         std::optional<FloorFrameReport>& global,
+                                         const RoleImages& roles) {
     const size_t run = std::min<size_t>(global_effects_.size(), global_effects_run_);
     if (run == 0) return &targets_.accumulation();
     global.emplace();
@@ -309,7 +321,7 @@ GpuImage* Compositor::add_global_effects(FrameBuilder& frame,
     const EffectChain chain{&global_effects_,
                             run,
                             &targets_.accumulation(),
-                            targets_.accumulation_pingpong(),
+                            roles[SharedRole::CompositePingpong],
                             global->scissor,
                             global->scissor,
                             false,
@@ -330,7 +342,7 @@ void Compositor::add_output(FrameBuilder& frame, GpuImage& accumulation, GpuImag
         [this, &accumulation, floor_image](PassRecording& r) {
             const PixelRect all{0, 0, int64_t(width_), int64_t(height_)};
             // Every pixel is written: nothing is loaded.
-            begin_rendering_planned(r.cmd, all, {&targets_.output(), LoadOp::DontCare});
+            begin_rendering(r.cmd, all, {&targets_.output(), LoadOp::DontCare});
             set_scissor(r.cmd, all);
             bind(r.cmd, HostPass::Output, accumulation.view(),
                  floor_image ? floor_image->view() : accumulation.view(),
@@ -348,19 +360,18 @@ void Compositor::add_output(FrameBuilder& frame, GpuImage& accumulation, GpuImag
         true);
 }
 
-Compositor::FrameShape Compositor::compile_frame(const FramePlan& plan, uint32_t active_floor) {
-    FrameBuilder frame;
-    FrameShape shape;
-    shape.plan = plan;
-    std::vector<FloorFrameReport> reports;
+Compositor::FrameBuild Compositor::build_frame(const FramePlan& plan, uint32_t active_floor,
+                                               const RoleImages& roles) {
+    FrameBuild out;
+    FrameBuilder& frame = out.builder;
     frame.add("clear accumulation", {{&targets_.accumulation(), ImageAccess::TransferWrite}},
               ReportIndex(ReportSlot::Frame), [this](PassRecording& r) {
-                  clear_image_planned(r.cmd, targets_.accumulation());
+                  clear_image(r.cmd, targets_.accumulation());
                   if (timer_) timer_->mark(r.cmd, "clear");
               });
     const bool floor_view = view_reads_floor_target(options_.view);
-    GpuImage* viewed = targets_.floor_colour();
-    const std::vector<FloorStep>& steps = shape.plan.steps;
+    GpuImage* viewed = roles[SharedRole::FloorColour];
+    const std::vector<FloorStep>& steps = plan.steps;
     for (size_t i = 0; i < steps.size();) {
         if (steps[i].path == FloorPath::Direct) {
             // The run of floors up to the next one with a target (skipped floors record
@@ -369,39 +380,91 @@ Compositor::FrameShape Compositor::compile_frame(const FramePlan& plan, uint32_t
             while (options_.plan.merge_direct_floors && end < steps.size() &&
                    steps[end].path != FloorPath::ThroughTarget)
                 ++end;
-            add_floors_direct(frame, steps, i, end, reports);
+            add_floors_direct(frame, steps, i, end, out.reports);
             i = end;
             continue;
         }
         const FloorStep& step = steps[i++];
-        reports.push_back(frame_report(step));
+        out.reports.push_back(frame_report(step));
         if (step.path == FloorPath::ThroughTarget) {
             const bool is_viewed = floor_view && step.floor == active_floor;
-            viewed =
-                add_floor_through_target(frame, step, is_viewed, ReportIndex(reports.size() - 1));
+            viewed = add_floor_through_target(frame, step, is_viewed,
+                                              ReportIndex(out.reports.size() - 1), roles);
         }
     }
     if (floor_view && steps.back().path != FloorPath::ThroughTarget) {
         // The active floor drew nothing (it covers no pixel), so its target must read as empty,
         // not as whatever a lower floor left in the shared target.
-        viewed = targets_.floor_colour();
+        viewed = roles[SharedRole::FloorColour];
         frame.add("clear the active floor's target", {{viewed, ImageAccess::TransferWrite}},
                   ReportIndex(ReportSlot::Frame),
-                  [viewed](PassRecording& r) { clear_image_planned(r.cmd, *viewed); });
+                  [viewed](PassRecording& r) { clear_image(r.cmd, *viewed); });
     }
-    std::optional<FloorFrameReport> global;
-    GpuImage* accumulation = add_global_effects(frame, global);
+    GpuImage* accumulation = add_global_effects(frame, out.global, roles);
     add_output(frame, *accumulation, floor_view ? viewed : nullptr);
-    shape.final_accumulation = accumulation;
-    shape.viewed_floor = viewed;
+    out.final_accumulation = accumulation;
+    out.viewed_floor = viewed;
     // Read after the frame: the output, the composite (read_accumulation), in a floor view the
     // active floor's target (read_active_floor), and the effects' own targets, which keep what
     // a frame wrote for the next (a plugin that reads one before writing it is caught by the
     // harness's isolation checks, which must see it).
-    std::vector<const GpuImage*> read_after{&targets_.output(), accumulation,
-                                            floor_view ? viewed : nullptr};
-    for (const GpuImage* image : targets_.effect_targets().images()) read_after.push_back(image);
-    shape.frame = frame.compile(read_after, std::move(reports), std::move(global));
+    out.read_after = {&targets_.output(), accumulation, floor_view ? viewed : nullptr};
+    for (const GpuImage* image : targets_.effect_targets().images())
+        out.read_after.push_back(image);
+    return out;
+}
+
+Result<Compositor::FrameShape> Compositor::compile_frame(const FramePlan& plan,
+                                                         uint32_t active_floor) {
+    // Built first over one stand-in per role, to learn which passes run and when each role is
+    // used; then built again over the images share_images gives the roles, without the passes
+    // that do not run (the same passes in the same order: a build depends only on the plan,
+    // the options and the roles' images).
+    const RoleImages stand_ins = targets_.stand_ins();
+    FrameBuild first = build_frame(plan, active_floor, stand_ins);
+    const FrameGraphPlan spans = first.builder.plan(first.read_after);
+    const std::vector<GpuImage*>& images = first.builder.images();
+    auto index_of = [&](const GpuImage* image) {
+        return uint32_t(std::find(images.begin(), images.end(), image) - images.begin());
+    };
+    std::vector<bool> shareable(images.size(), false);
+    for (GpuImage* stand_in : stand_ins.image)
+        if (stand_in && index_of(stand_in) < images.size()) shareable[index_of(stand_in)] = true;
+    SharedSlots slots = share_images(spans, shareable, first.builder.read_flags(first.read_after));
+    if (!options_.plan.share_targets) {
+        // One image per role, in the roles' order (to compare: render/frame_targets.hpp).
+        uint32_t next = 0;
+        for (GpuImage* stand_in : stand_ins.image) {
+            if (!stand_in) continue;
+            if (index_of(stand_in) < images.size()) slots.slot[index_of(stand_in)] = next;
+            slots.count = ++next;
+        }
+    }
+    std::vector<GpuImage>& shared = targets_.shared();
+    // Not expected (frame_targets.hpp says why two suffice); refused rather than drawn wrong.
+    if (slots.count > shared.size())
+        return make_error(
+            ErrorCode::OutOfMemory,
+            fmt::format("{}: the frame for floor {} needs {} transient targets at "
+                        "once; {} were allocated at load",
+                        scene_.file.string(), active_floor, slots.count, shared.size()));
+    RoleImages roles;
+    for (size_t r = 0; r < kSharedRoles; ++r) {
+        GpuImage* stand_in = stand_ins.image[r];
+        if (!stand_in) continue;
+        const uint32_t index = index_of(stand_in);
+        const uint32_t slot = index < images.size() ? slots.slot[index] : SharedSlots::kNone;
+        // A role no running pass uses is named only by passes that are dropped below.
+        roles.image[r] = &shared[slot == SharedSlots::kNone ? 0 : slot];
+    }
+    FrameBuild second = build_frame(plan, active_floor, roles);
+    second.builder.drop(spans.culled);
+    FrameShape shape;
+    shape.plan = plan;
+    shape.final_accumulation = second.final_accumulation;
+    shape.viewed_floor = second.viewed_floor;
+    shape.frame = second.builder.compile(second.read_after, std::move(second.reports),
+                                         std::move(second.global));
     return shape;
 }
 

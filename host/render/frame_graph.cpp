@@ -137,4 +137,31 @@ FrameGraphPlan compile_frame_graph(const std::vector<FramePassDecl>& passes,
     return plan;
 }
 
+SharedSlots share_images(const FrameGraphPlan& plan, const std::vector<bool>& shareable,
+                         const std::vector<bool>& read_after) {
+    const size_t images = plan.lifetimes.size();
+    assert(shareable.size() == images && read_after.size() == images);
+    SharedSlots out;
+    out.slot.assign(images, SharedSlots::kNone);
+    std::vector<uint32_t> order;
+    for (uint32_t i = 0; i < images; ++i)
+        if (shareable[i] && plan.lifetimes[i].used()) order.push_back(i);
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return plan.lifetimes[a].first < plan.lifetimes[b].first;
+    });
+    const uint32_t frame_end = uint32_t(plan.passes.size());
+    std::vector<uint32_t> busy_until;  // per slot: the last pass its current image is used by
+    for (uint32_t image : order) {
+        const ImageLifetime& life = plan.lifetimes[image];
+        const uint32_t last = read_after[image] ? frame_end : life.last;
+        uint32_t slot = 0;
+        while (slot < busy_until.size() && busy_until[slot] >= life.first) ++slot;
+        if (slot == busy_until.size()) busy_until.push_back(0);
+        busy_until[slot] = last;
+        out.slot[image] = slot;
+    }
+    out.count = uint32_t(busy_until.size());
+    return out;
+}
+
 }  // namespace acetate

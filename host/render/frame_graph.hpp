@@ -77,4 +77,20 @@ struct FrameGraphPlan {
 FrameGraphPlan compile_frame_graph(const std::vector<FramePassDecl>& passes,
                                    const std::vector<bool>& read_after);
 
+// Which image each of a frame's interchangeable images becomes (Filament's and Granite's
+// aliasing of transient resources): images whose spans of use do not overlap share one. An
+// image is shareable when the host declares that no pass reads what it held before the frame
+// wrote it; one read after the frame is in use until the frame's end. Images of one slot
+// follow each other strictly: one whose last use is the pass that first uses another does not
+// share with it.
+struct SharedSlots {
+    static constexpr uint32_t kNone = UINT32_MAX;  // not shareable, or not used by the frame
+    std::vector<uint32_t> slot;                    // per image
+    uint32_t count = 0;                            // slots used: the images the frame needs
+};
+// Slots are given in order of first use, each the lowest one free (an interval graph coloured
+// greedily needs no more slots than images in use at once, the fewest possible).
+SharedSlots share_images(const FrameGraphPlan& plan, const std::vector<bool>& shareable,
+                         const std::vector<bool>& read_after);
+
 }  // namespace acetate

@@ -24,6 +24,9 @@ struct PlanOptions {
     bool draw_direct = true;          // floors without effects draw straight into the accum
     bool merge_direct_floors = true;  // consecutive direct floors share one rendering pass
     int64_t force_target_floor = -1;  // this floor goes through its target (debug views)
+    // The floor's and the composite's working images share memory where a frame uses them at
+    // different times (render/frame_targets.hpp).
+    bool share_targets = true;
 };
 
 enum class FloorPath { Skipped, Direct, ThroughTarget };

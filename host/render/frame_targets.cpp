@@ -1,10 +1,24 @@
 #include "render/frame_targets.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "vulkan/vulkan_context.hpp"
 
 namespace acetate {
+
+const char* to_string(SharedRole role) {
+    switch (role) {
+        case SharedRole::FloorColour:
+            return "floor colour";
+        case SharedRole::FloorPingpong:
+            return "floor ping-pong";
+        case SharedRole::CompositePingpong:
+            return "composite ping-pong";
+    }
+    return "?";
+}
 
 Result<void> FrameTargets::allocate(VulkanContext& context, uint32_t width, uint32_t height,
                                     VkFormat format, const FrameTargetNeeds& needs,
@@ -29,15 +43,27 @@ Result<void> FrameTargets::allocate(VulkanContext& context, uint32_t width, uint
     ACETATE_TRY(make_colour(output, "output"));
     accumulation_ = std::move(*accumulation);
     output_ = std::move(*output);
-    if (needs.floor_target) {
-        ACETATE_TRY(make_colour(floor_colour_, "floor.color"));
+    if (needs.floor_target)
         ACETATE_TRY(
             make(floor_stencil_, "floor.stencil", context.stencil_format(),
                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT));
+    const std::array<bool, kSharedRoles> roles{needs.floor_target, needs.floor_effects,
+                                               needs.global_effects};
+    size_t role_count = 0;
+    for (size_t r = 0; r < kSharedRoles; ++r) {
+        stand_ins_[r].reset();
+        if (!roles[r]) continue;
+        ++role_count;
+        stand_ins_[r] = GpuImage::stand_in(to_string(SharedRole(r)), width, height, format);
     }
-    if (needs.floor_effects) ACETATE_TRY(make_colour(floor_pingpong_, "floor.pingpong"));
-    if (needs.global_effects)
-        ACETATE_TRY(make_colour(accumulation_pingpong_, "accumulation.pingpong"));
+    // At most two roles are in use at once (see the header).
+    const size_t images = needs.share_roles ? std::min<size_t>(role_count, 2) : role_count;
+    shared_.clear();
+    for (size_t i = 0; i < images; ++i) {
+        std::optional<GpuImage> image;
+        ACETATE_TRY(make_colour(image, fmt::format("transient.{}", i).c_str()));
+        shared_.push_back(std::move(*image));
+    }
     auto violations = GpuBuffer::create(
         context, VkDeviceSize(sizeof(uint32_t) * std::max<size_t>(1, needs.floor_count)),
         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -49,10 +75,15 @@ Result<void> FrameTargets::allocate(VulkanContext& context, uint32_t width, uint
 template <typename Self>
 auto FrameTargets::list_images(Self& self) {
     std::vector<decltype(&self.accumulation_)> out{&self.accumulation_, &self.output_};
-    for (auto* optional : {&self.accumulation_pingpong_, &self.floor_colour_, &self.floor_stencil_,
-                           &self.floor_pingpong_})
-        if (optional->has_value()) out.push_back(&optional->value());
+    for (auto& image : self.shared_) out.push_back(&image);
+    if (self.floor_stencil_) out.push_back(&*self.floor_stencil_);
     for (auto* image : self.effect_targets_.images()) out.push_back(image);
+    return out;
+}
+
+RoleImages FrameTargets::stand_ins() {
+    RoleImages out;
+    for (size_t r = 0; r < kSharedRoles; ++r) out.image[r] = opt(stand_ins_[r]);
     return out;
 }
 

@@ -125,6 +125,15 @@ Result<GpuImage> GpuImage::create(VulkanContext& context, std::string name, uint
     return out;
 }
 
+GpuImage GpuImage::stand_in(std::string name, uint32_t width, uint32_t height, VkFormat format) {
+    GpuImage out;
+    out.name_ = std::move(name);
+    out.width_ = width;
+    out.height_ = height;
+    out.format_ = format;
+    return out;
+}
+
 GpuImage::~GpuImage() {
     release();
 }

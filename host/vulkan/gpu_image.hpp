@@ -32,6 +32,10 @@ class GpuImage {
     static Result<GpuImage> create(VulkanContext& context, std::string name, uint32_t width,
                                    uint32_t height, VkFormat format, VkImageUsageFlags usage,
                                    bool is_target);
+    // An image with a name, a size and a format and no Vulkan objects: what a frame is first
+    // compiled over to learn when each of its interchangeable images is used, before the images
+    // they will share are chosen (render/frame_targets.hpp). Recording with one is a bug.
+    static GpuImage stand_in(std::string name, uint32_t width, uint32_t height, VkFormat format);
     ~GpuImage();
     GpuImage(GpuImage&& other) noexcept;
     GpuImage& operator=(GpuImage&& other) noexcept;

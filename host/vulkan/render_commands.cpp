@@ -25,13 +25,6 @@ VkRect2D to_vk(const PixelRect& r) {
 
 void begin_rendering(VkCommandBuffer cmd, const PixelRect& area, const ColourAttachment& colour,
                      const StencilAttachment* stencil) {
-    colour.image->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    if (stencil) stencil->image->transition(cmd, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
-    begin_rendering_planned(cmd, area, colour, stencil);
-}
-
-void begin_rendering_planned(VkCommandBuffer cmd, const PixelRect& area,
-                             const ColourAttachment& colour, const StencilAttachment* stencil) {
     VkRenderingAttachmentInfo colour_info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     colour_info.imageView = colour.image->view();
     colour_info.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
@@ -59,19 +52,13 @@ void begin_rendering_planned(VkCommandBuffer cmd, const PixelRect& area,
     vkCmdBeginRendering(cmd, &info);
 }
 
-void fill_area_planned(VkCommandBuffer cmd, GpuImage& image, const PixelRect& area,
-                       const Rgba& colour) {
+void fill_area(VkCommandBuffer cmd, GpuImage& image, const PixelRect& area, const Rgba& colour) {
     if (area.empty()) return;
-    begin_rendering_planned(cmd, area, {&image, LoadOp::Clear, colour});
+    begin_rendering(cmd, area, {&image, LoadOp::Clear, colour});
     vkCmdEndRendering(cmd);
 }
 
 void clear_image(VkCommandBuffer cmd, GpuImage& image, const Rgba& colour) {
-    image.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    clear_image_planned(cmd, image, colour);
-}
-
-void clear_image_planned(VkCommandBuffer cmd, GpuImage& image, const Rgba& colour) {
     VkClearColorValue value;
     std::memcpy(value.float32, colour.data(), sizeof(value.float32));
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -79,8 +66,7 @@ void clear_image_planned(VkCommandBuffer cmd, GpuImage& image, const Rgba& colou
                          &range);
 }
 
-void clear_stencil_image(VkCommandBuffer cmd, GpuImage& image) {
-    image.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+void clear_stencil(VkCommandBuffer cmd, GpuImage& image) {
     const VkClearDepthStencilValue value{1.0f, 0};
     const VkImageSubresourceRange range{image.aspect(), 0, 1, 0, 1};
     vkCmdClearDepthStencilImage(cmd, image.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &value, 1,

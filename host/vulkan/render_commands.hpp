@@ -1,11 +1,9 @@
 #pragma once
 // The Vulkan commands every pass of the host records, in one place: dynamic rendering begun
 // over an area into a colour target (and the floor's stencil), whole-image clears, the
-// viewport and scissor. Each comes twice: inside a compiled frame (render/compiled_frame.hpp)
-// the barriers are planned and recorded before the pass, so the `_planned` helpers record none
-// and expect each image in its layout; outside one (the load's clears and warm-up, the camera's
-// masks) the plain helpers record the layout transition first (a full barrier:
-// GpuImage::transition), so a caller never pairs a barrier with a pass by hand.
+// viewport and scissor. Every pass runs in a compiled frame (render/compiled_frame.hpp: the
+// frames, the load's warm-up, the camera's masks), whose barriers are planned and recorded
+// before the pass, so these record none and expect each image in the layout of its use.
 
 #include <vulkan/vulkan.h>
 
@@ -43,26 +41,19 @@ struct StencilAttachment {
 };
 
 // Begins rendering over `area` (the area loads and clears are limited to); end it with
-// vkCmdEndRendering. Transitions the attachments to attachment layouts first; a stencil
-// already in that layout still gets the barrier that makes earlier writes visible.
+// vkCmdEndRendering. The attachments are in their layouts (COLOR_ATTACHMENT_OPTIMAL,
+// DEPTH_STENCIL_ATTACHMENT_OPTIMAL).
 void begin_rendering(VkCommandBuffer cmd, const PixelRect& area, const ColourAttachment& colour,
                      const StencilAttachment* stencil = nullptr);
-// The same with the attachments already in their layouts (COLOR_ATTACHMENT_OPTIMAL,
-// DEPTH_STENCIL_ATTACHMENT_OPTIMAL) and the barriers recorded: no barrier of its own.
-void begin_rendering_planned(VkCommandBuffer cmd, const PixelRect& area,
-                             const ColourAttachment& colour,
-                             const StencilAttachment* stencil = nullptr);
 
 // Fills `area` of `image` (already a colour attachment) with `colour`: a pass that only clears
-// (vkCmdClearColorImage cannot be limited to an area). An empty area records nothing. Planned.
-void fill_area_planned(VkCommandBuffer cmd, GpuImage& image, const PixelRect& area,
-                       const Rgba& colour);
+// (vkCmdClearColorImage cannot be limited to an area). An empty area records nothing.
+void fill_area(VkCommandBuffer cmd, GpuImage& image, const PixelRect& area, const Rgba& colour);
 
-// Clears the whole of a colour image (to transparent unless told) or a stencil image (to 0).
+// Clears the whole of a colour image (to transparent unless told) or a stencil image (to 0),
+// in TRANSFER_DST_OPTIMAL.
 void clear_image(VkCommandBuffer cmd, GpuImage& image, const Rgba& colour = {0, 0, 0, 0});
-// The same for a colour image already in TRANSFER_DST_OPTIMAL (a compiled frame's clear).
-void clear_image_planned(VkCommandBuffer cmd, GpuImage& image, const Rgba& colour = {0, 0, 0, 0});
-void clear_stencil_image(VkCommandBuffer cmd, GpuImage& image);
+void clear_stencil(VkCommandBuffer cmd, GpuImage& image);
 
 // A viewport of `width` x `height` pixels from the origin, and the scissor `rect`.
 void set_viewport_and_scissor(VkCommandBuffer cmd, uint32_t width, uint32_t height,

@@ -1,7 +1,9 @@
 // The compiled frame (render/compiled_frame.hpp) on the device: a frame records one barrier
 // command at most before each of its passes, whatever images the pass touches; a frame is
 // compiled once per shape and run again, to the same bits, until the camera moves; the
-// validation layer (on here, any message fails the test) sees every layout the passes use.
+// validation layer (on here, any message fails the test) sees every layout the passes use; the
+// floor's and the composite's working images shared by when a frame uses them draw what one
+// image per role draws.
 
 #include "render_fixture.hpp"
 
@@ -76,6 +78,45 @@ TEST_F(CompiledFrames, AFrameIsCompiledOnceAndRunsAgainToTheSameBitsUntilTheCame
     ASSERT_TRUE(compositor->set_view_transform(pan));
     render(*compositor, 2);
     EXPECT_EQ(compositor->frames_compiled(), at_load + 2);
+}
+
+size_t transient_images(const Compositor& compositor) {
+    size_t count = 0;
+    for (const TargetInfo& t : compositor.targets_held())
+        count += t.name.rfind("transient.", 0) == 0 ? 1 : 0;
+    return count;
+}
+
+TEST_F(CompiledFrames, RolesUsedAtDifferentTimesShareImagesAndDrawTheSameBits) {
+    // Floors with lighting (one effect: its result ends in the floor's ping-pong partner) under
+    // a global bloom: three roles. In the debug views the floor's image is read to the frame's
+    // end, beside the composite's partner; every view is loaded with its own pipelines.
+    for (OutputView view : {OutputView::Normal, OutputView::FloorAlpha, OutputView::AccumAlpha,
+                            OutputView::FloorRgb, OutputView::Violations, OutputView::Isolation}) {
+        SCOPED_TRACE(std::string("view ") + to_string(view));
+        CompositorOptions shared_options;
+        shared_options.view = view;
+        CompositorOptions apart_options = shared_options;
+        apart_options.plan.share_targets = false;
+        auto shared = load(three_floors(), shared_options);
+        auto apart = load(three_floors(), apart_options);
+        ASSERT_TRUE(shared && apart);
+        EXPECT_EQ(transient_images(*shared), 2u);
+        EXPECT_EQ(transient_images(*apart), 3u);
+        for (uint32_t floor = 0; floor < 3; ++floor) {
+            SCOPED_TRACE("active floor " + std::to_string(floor));
+            EXPECT_EQ(max_abs_difference(render(*shared, floor), render(*apart, floor)), 0.0);
+            auto composite = shared->read_accumulation();
+            auto composite_apart = apart->read_accumulation();
+            ASSERT_TRUE(composite && composite_apart);
+            EXPECT_EQ(max_abs_difference(composite.value(), composite_apart.value()), 0.0);
+            if (!view_reads_floor_target(view)) continue;
+            auto own = shared->read_active_floor();
+            auto own_apart = apart->read_active_floor();
+            ASSERT_TRUE(own && own_apart);
+            EXPECT_EQ(max_abs_difference(own.value(), own_apart.value()), 0.0);
+        }
+    }
 }
 
 }  // namespace

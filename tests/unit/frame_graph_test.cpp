@@ -149,5 +149,71 @@ TEST(FrameGraph, LifetimesAreTheFirstAndLastPassThatRunsAndUsesTheImage) {
     EXPECT_EQ(plan.lifetimes[0].first, 2u);
 }
 
+// Slots per image from share_images, for images 0..n-1 (kNone shown as -1).
+std::vector<int> slots_of(const SharedSlots& shared) {
+    std::vector<int> out;
+    for (uint32_t slot : shared.slot) out.push_back(slot == SharedSlots::kNone ? -1 : int(slot));
+    return out;
+}
+
+TEST(FrameGraph, ImagesUsedAtDifferentTimesShareAndOverlappingOnesDoNot) {
+    // A floor's pair (1, 2) ping-pongs into the composite (0); then the composite's partner (3)
+    // ping-pongs with it; 4 is not shareable (an effect's own target).
+    const std::vector<FramePassDecl> p{
+        pass("floor tiles", {{1, A::ColourWrite}}),
+        pass("clear partner", {{2, A::TransferWrite}}),
+        pass("effect", {{1, A::Sampled}, {2, A::ColourWrite}}),
+        pass("composite", {{2, A::Sampled}, {0, A::ColourWrite}}),
+        pass("clear composite partner", {{3, A::TransferWrite}}),
+        pass("global effect", {{0, A::Sampled}, {4, A::ColourWrite}}),
+        pass("global effect 2", {{4, A::Sampled}, {3, A::ColourWrite}}),
+        pass("output", {{3, A::Sampled}, {5, A::ColourWrite}}),
+    };
+    const std::vector<bool> read_after{false, false, false, false, true, true};
+    const FrameGraphPlan plan = compile_frame_graph(p, read_after);
+    const SharedSlots shared =
+        share_images(plan, {false, true, true, true, false, false}, read_after);
+    // 1 and 2 overlap (the effect reads one and writes the other); 3 starts after both end.
+    EXPECT_EQ(slots_of(shared), (std::vector<int>{-1, 0, 1, 0, -1, -1}));
+    EXPECT_EQ(shared.count, 2u);
+}
+
+TEST(FrameGraph, AnImageReadAfterTheFrameSharesWithNothingThatStartsLater) {
+    // As a debug view keeps the floor's image (2) to the frame's end, the composite's partner
+    // (3) cannot take its slot, and takes the floor's other image's (1).
+    const std::vector<FramePassDecl> p{
+        pass("floor tiles", {{1, A::ColourWrite}}),
+        pass("effect", {{1, A::Sampled}, {2, A::ColourWrite}}),
+        pass("composite", {{2, A::Sampled}, {0, A::ColourWrite}}),
+        pass("global effect", {{0, A::Sampled}, {3, A::ColourWrite}}),
+        pass("output", {{3, A::Sampled}, {2, A::Sampled}, {4, A::ColourWrite}}),
+    };
+    const std::vector<bool> read_after{false, false, true, false, true};
+    const FrameGraphPlan plan = compile_frame_graph(p, read_after);
+    const SharedSlots shared = share_images(plan, {false, true, true, true, false}, read_after);
+    EXPECT_EQ(slots_of(shared), (std::vector<int>{-1, 0, 1, 0, -1}));
+    EXPECT_EQ(shared.count, 2u);
+    // Read after the frame, 1 keeps its slot to the end: 3 needs a slot of its own.
+    const std::vector<bool> both_kept{false, true, true, false, true};
+    const SharedSlots kept = share_images(compile_frame_graph(p, both_kept),
+                                          {false, true, true, true, false}, both_kept);
+    EXPECT_EQ(slots_of(kept), (std::vector<int>{-1, 0, 1, 2, -1}));
+    EXPECT_EQ(kept.count, 3u);
+}
+
+TEST(FrameGraph, AnImageLastUsedByThePassThatFirstUsesAnotherDoesNotShareWithIt) {
+    const std::vector<FramePassDecl> p{
+        pass("a", {{1, A::ColourWrite}}),
+        pass("a to b", {{1, A::Sampled}, {2, A::ColourWrite}}),
+        pass("b to out", {{2, A::Sampled}, {0, A::ColourWrite}}),
+        pass("dead", {{3, A::ColourWrite}}),
+    };
+    const std::vector<bool> read_after{true, false, false, false};
+    const SharedSlots shared =
+        share_images(compile_frame_graph(p, read_after), {false, true, true, true}, read_after);
+    // 3 is written only by a culled pass: it needs no image at all.
+    EXPECT_EQ(slots_of(shared), (std::vector<int>{-1, 0, 1, -1}));
+}
+
 }  // namespace
 }  // namespace acetate

@@ -146,7 +146,7 @@ struct StepStatistics {
 
 // A render target or texture a loaded scene holds on the device.
 struct ImageInfo {
-    std::string name;    // "accumulation", "floor.color", "acetate.bloom.level1", a tile's file
+    std::string name;    // "accumulation", "transient.0", "acetate.bloom.down1", a tile's file
     std::string format;  // "rgba16f", ...
     uint32_t width = 0, height = 0;
     uint64_t bytes = 0;
