@@ -1,7 +1,7 @@
-// Fuzzes the image loader (OpenImageIO underneath, through our checks: sizes, channels,
-// finiteness, premultiplication): any file gives an image or a one-line error. The bytes are
-// written to a file because the loader reads files; the first byte picks the extension, so both
-// decoders a scene uses are reached.
+// Fuzzes the image loader (libpng and OpenEXR for PNG and EXR, OpenImageIO's module for any
+// other format, each behind our checks: sizes, channels, finiteness, premultiplication): any
+// file gives an image or a one-line error. The bytes are written to a file because the loader
+// reads files; the first byte picks the extension, so both formats a scene uses are reached.
 #include <unistd.h>
 
 #include <cstddef>

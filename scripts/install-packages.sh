@@ -10,7 +10,7 @@ set -euo pipefail
 packages=(
   cmake g++ make pkg-config git
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-dev glslang-tools
-  libopenimageio-dev openimageio-tools libimath-dev
+  libopenimageio-dev openimageio-tools libimath-dev libpng-dev libopenexr-dev
   libboost-dev libboost-filesystem-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libglm-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev clang-format debootstrap libxml2-utils

@@ -32,7 +32,6 @@
 #include "registry.hpp"
 #include "registry_commands.hpp"
 #include "registry_location.hpp"
-#include "scene/image_codec.hpp"
 #include "shard.hpp"
 #include "ssh_signature.hpp"
 #include "validate.hpp"
@@ -549,13 +548,7 @@ int main(int argc, char** argv) {
     // Started by a run as its fork server (core/fork_server.hpp): each case's child is forked
     // from this process, prepared once (prepare_case_children) and otherwise untouched, and
     // runs as `acetate-harness run-case ...` would.
-    if (argc == 2 && std::strcmp(argv[1], harness::kForkServerCommand) == 0) {
-        // Every case reads and writes images, so the image codec module (scene/image_codec.hpp)
-        // is loaded once here, before the server starts: OpenImageIO's libraries start idle
-        // threads when loaded, which prepare_case_children must not leave behind (a child
-        // would not have them). Should it fail, each child loads it and says why.
-        (void)image_codec();
+    if (argc == 2 && std::strcmp(argv[1], harness::kForkServerCommand) == 0)
         return serve_forks(run_harness, harness::prepare_case_children);
-    }
     return run_harness(argc, argv);
 }

@@ -36,7 +36,7 @@ Result<const ImageCodec*> load_codec() {
     using Entry = const ImageCodec* (*)();
     auto entry = reinterpret_cast<Entry>(dlsym(handle, kImageCodecEntry));
     const ImageCodec* codec = entry ? entry() : nullptr;
-    if (!codec || !codec->decode || !codec->encode_png || !codec->encode_exr)
+    if (!codec || !codec->decode)
         return make_error(ErrorCode::ImageDecode,
                           fmt::format("{} is not an Acetate image codec (no {})", module.string(),
                                       kImageCodecEntry));

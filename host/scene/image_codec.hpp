@@ -1,13 +1,13 @@
 #pragma once
-// The image file formats themselves (PNG, EXR and whatever else OpenImageIO reads), in a module
-// of their own, libacetate-image-codec.so, loaded the first time a file is decoded or encoded.
+// Image formats other than PNG and EXR (JPEG, TIFF, WebP, and whatever else OpenImageIO reads),
+// decoded in a module of their own, libacetate-image-codec.so, loaded the first time such a
+// file is read. PNG and EXR, the formats Acetate writes and most scenes hold, the host reads and
+// writes itself (scene/png_file.hpp, scene/exr_file.hpp).
 //
 // Why a module: OpenImageIO brings about 260 libraries, and binding them costs every process
 // that links it about 0.4 s before main() (measured on the 2-core machine, more than half of a
-// short harness case). Most processes of the project never touch an image file: a program
-// that embeds the host and renders to its own targets, the harness's `describe` child, a CLI
-// run refused for bad input, a test that only reads JSON. Linked into libacetate-host.so they
-// paid it anyway; now only a process that reads or writes an image does, once.
+// short harness case). Linked into libacetate-host.so every process paid it; now only one that
+// reads another format does, once.
 //
 // The module is part of the host, found beside libacetate-host.so (build tree and install
 // alike), never named by a scene or a registry; it holds no policy: the host checks every
@@ -38,18 +38,30 @@ struct DecodeLimits {
     int64_t max_pixels = 0;
 };
 
-// The module's functions. Each returns false with a one-line reason in `error` (the caller
-// names the file). `name` is the file's path: it picks the format by extension and is what a
-// decoder without in-memory input opens.
+// Whether a `width` x `height` image is within `limits`; if not, `error` says how, in the same
+// words for every format.
+inline bool within_decode_limits(int64_t width, int64_t height, const DecodeLimits& limits,
+                                 std::string& error) {
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    if (width <= 0 || height <= 0)
+        error = "image has no pixels";
+    else if (width > limits.max_side || height > limits.max_side)
+        error = "image is " + size + ", larger than " + std::to_string(limits.max_side) +
+                " on a side";
+    else if (width * height > limits.max_pixels)
+        error = "image is " + size + ", more than " + std::to_string(limits.max_pixels) +
+                " pixels (8192x8192)";
+    else
+        return true;
+    return false;
+}
+
+// The module's functions. `decode` returns false with a one-line reason in `error` (the
+// caller names the file). `name` is the file's path: it picks the format by extension and is
+// what a decoder without in-memory input opens.
 struct ImageCodec {
     bool (*decode)(const std::string& name, const void* bytes, size_t size,
                    const DecodeLimits& limits, DecodedFile& out, std::string& error);
-    // 8-bit straight-alpha sRGB RGBA, as a PNG.
-    bool (*encode_png)(const std::string& name, uint32_t width, uint32_t height,
-                       const uint8_t* rgba8, std::vector<unsigned char>& out, std::string& error);
-    // Float RGBA as an EXR: half (ZIP) or full float (uncompressed, for exact test inputs).
-    bool (*encode_exr)(const std::string& name, uint32_t width, uint32_t height, const float* rgba,
-                       bool full_float, std::vector<unsigned char>& out, std::string& error);
 };
 
 // The module's one entry point (a C name, so the host can find it with dlsym).

@@ -1,6 +1,6 @@
-// libacetate-image-codec.so: the image formats through OpenImageIO (scene/image_codec.hpp says
-// why this is a module). Only decoding and encoding live here; the checks on a file's bytes
-// and the colour conventions stay in the host (scene/image_io.cpp).
+// libacetate-image-codec.so: the image formats other than PNG and EXR, through OpenImageIO
+// (scene/image_codec.hpp says why this is a module). Only decoding lives here; the checks on a
+// file's bytes and the colour conventions stay in the host (scene/image_io.cpp).
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -48,17 +48,15 @@ bool decode(const std::string& name, const void* bytes, size_t size, const Decod
         return false;
     }
     const OIIO::ImageSpec& spec = input->spec();
-    if (spec.deep)
+    if (spec.deep) {
         error = "deep images are not supported";
-    else if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        return false;
+    }
+    if (spec.nchannels <= 0) {
         error = "image has no pixels";
-    else if (spec.width > limits.max_side || spec.height > limits.max_side)
-        error = "image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                ", larger than " + std::to_string(limits.max_side) + " on a side";
-    else if (int64_t(spec.width) * spec.height > limits.max_pixels)
-        error = "image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                ", more than " + std::to_string(limits.max_pixels) + " pixels (8192x8192)";
-    if (!error.empty()) return false;
+        return false;
+    }
+    if (!within_decode_limits(spec.width, spec.height, limits, error)) return false;
 
     out.width = uint32_t(spec.width);
     out.height = uint32_t(spec.height);
@@ -75,48 +73,7 @@ bool decode(const std::string& name, const void* bytes, size_t size, const Decod
     return true;
 }
 
-// Encodes one image in memory (`format` is "png" or "openexr"); `pixels` are in `pixel_type`.
-// Nothing touches the disk here: the host writes the bytes through its one checked, atomic
-// writer, so a full disk or a missing folder is an I/O error of the target, and an encoder that
-// would not report a short write cannot hide one.
-bool encode(const std::string& name, const char* format, const OIIO::ImageSpec& spec,
-            OIIO::TypeDesc pixel_type, const void* pixels, std::vector<unsigned char>& out,
-            std::string& error) {
-    out.clear();
-    OIIO::Filesystem::IOVecOutput memory(out);
-    auto output = OIIO::ImageOutput::create(format);
-    if (!output || !output->set_ioproxy(&memory)) {
-        error = std::string("cannot encode ") + format + ": " + one_line(OIIO::geterror());
-        return false;
-    }
-    if (!output->open(name, spec) || !output->write_image(pixel_type, pixels) || !output->close()) {
-        error = one_line(output->geterror());
-        return false;
-    }
-    return true;
-}
-
-bool encode_png(const std::string& name, uint32_t width, uint32_t height, const uint8_t* rgba8,
-                std::vector<unsigned char>& out, std::string& error) {
-    OIIO::ImageSpec spec(int(width), int(height), 4, OIIO::TypeDesc::UINT8);
-    // Without this OpenImageIO would un-premultiply the already straight values again.
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    // zlib's fastest level: a quarter of a one-shot render's CPU went to compressing at the
-    // default level 6, for files about a tenth smaller (docs/performance.md, "One-shot renders").
-    spec.attribute("png:compressionLevel", 1);
-    return encode(name, "png", spec, OIIO::TypeDesc::UINT8, rgba8, out, error);
-}
-
-bool encode_exr(const std::string& name, uint32_t width, uint32_t height, const float* rgba,
-                bool full_float, std::vector<unsigned char>& out, std::string& error) {
-    OIIO::ImageSpec spec(int(width), int(height), 4,
-                         full_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF);
-    if (full_float) spec.attribute("compression", "none");
-    return encode(name, "openexr", spec, OIIO::TypeDesc::FLOAT, rgba, out, error);
-}
-
-constexpr ImageCodec kCodec{decode, encode_png, encode_exr};
+constexpr ImageCodec kCodec{decode};
 
 }  // namespace
 }  // namespace acetate

@@ -12,9 +12,11 @@
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
 #include "core/stderr_capture.hpp"
+#include "scene/exr_file.hpp"
 #include "scene/exr_header_check.hpp"
 #include "scene/image_codec.hpp"
 #include "scene/png_chunk_check.hpp"
+#include "scene/png_file.hpp"
 
 namespace acetate {
 namespace {
@@ -109,18 +111,7 @@ void to_linear_premultiplied(DecodedPixels& decoded) {
     }
 }
 
-// The codec, or why it could not be loaded as an error of `code` (decoding or encoding).
-Result<const ImageCodec*> codec_for(ErrorCode code) {
-    auto codec = image_codec();
-    if (codec) return codec;
-    Error error = codec.error();
-    error.code = code;
-    return error;
-}
-
-Result<std::vector<unsigned char>> encode_exr(const fs::path& file, const ImageRGBA& image) {
-    auto codec = codec_for(ErrorCode::ImageEncode);
-    if (!codec) return codec.error();
+Result<std::vector<unsigned char>> encode_exr_bytes(const fs::path& file, const ImageRGBA& image) {
     // Premultiplied linear, as the host holds it; only values beyond the half range are
     // clamped, so that the conversion does not create Inf.
     std::vector<float> pixels(image.pixels);
@@ -128,24 +119,37 @@ Result<std::vector<unsigned char>> encode_exr(const fs::path& file, const ImageR
         if (std::isfinite(value)) value = std::clamp(value, -kHalfMax, kHalfMax);
     std::vector<unsigned char> bytes;
     std::string why;
-    if (!codec.value()->encode_exr(file.string(), image.width, image.height, pixels.data(), false,
-                                   bytes, why))
+    if (!encode_exr(image.width, image.height, pixels.data(), false, bytes, why))
         return file_error(ErrorCode::ImageEncode, file, why);
     return bytes;
 }
 
-Result<std::vector<unsigned char>> encode_png(const fs::path& file, const ImageRGBA& image) {
-    auto codec = codec_for(ErrorCode::ImageEncode);
-    if (!codec) return codec.error();
+Result<std::vector<unsigned char>> encode_png_bytes(const fs::path& file, const ImageRGBA& image) {
     std::vector<uint8_t> pixels(image.pixels.size());
     for (size_t i = 0; i < image.pixels.size(); i += 4)
         premultiplied_to_srgb8(&image.pixels[i], &pixels[i]);
     std::vector<unsigned char> bytes;
     std::string why;
-    if (!codec.value()->encode_png(file.string(), image.width, image.height, pixels.data(), bytes,
-                                   why))
+    if (!encode_png(image.width, image.height, pixels.data(), bytes, why))
         return file_error(ErrorCode::ImageEncode, file, why);
     return bytes;
+}
+
+// Decodes `bytes` of `file`: PNG and EXR by the host itself, any other format by the codec
+// module (loaded now if it is not yet). False with the reason in `why`.
+bool decode_file(const fs::path& file, const std::string& bytes, DecodedFile& stored,
+                 std::string& why) {
+    const DecodeLimits limits{kMaxImageSide, kMaxImagePixels};
+    if (is_png(bytes.data(), bytes.size()))
+        return decode_png(bytes.data(), bytes.size(), limits, stored, why);
+    if (is_exr(bytes.data(), bytes.size()))
+        return decode_exr(bytes.data(), bytes.size(), limits, stored, why);
+    auto codec = image_codec();
+    if (!codec) {
+        why = codec.error().message;
+        return false;
+    }
+    return codec.value()->decode(file.string(), bytes.data(), bytes.size(), limits, stored, why);
 }
 
 }  // namespace
@@ -173,16 +177,13 @@ Result<ImageRGBA> load_image(const fs::path& file, ImageRole role) {
     if (!bytes) return bytes.error();
     ACETATE_TRY(check_exr_header(bytes.value(), file, kMaxImageSide));
     ACETATE_TRY(check_png_chunks(bytes.value(), file));
-    auto codec = codec_for(ErrorCode::ImageDecode);
-    if (!codec) return codec.error();
     // libpng and others print raw lines of their own before failing; the failure is reported
     // below in one line, so what they printed is dropped then, and passed on as one line when
     // the image decodes anyway (a warning).
     StderrCapture library_output;
     DecodedFile stored;
     std::string why;
-    const bool ok = codec.value()->decode(file.string(), bytes->data(), bytes->size(),
-                                          {kMaxImageSide, kMaxImagePixels}, stored, why);
+    const bool ok = decode_file(file, bytes.value(), stored, why);
     const std::string printed = library_output.finish();
     if (!ok) return file_error(ErrorCode::ImageDecode, file, why);
     DecodedPixels decoded = expand_to_rgba(stored);
@@ -208,7 +209,7 @@ Result<void> save_image(const fs::path& file, const ImageRGBA& image) {
         return file_error(
             ErrorCode::InvalidInput, file,
             fmt::format("unsupported output extension \"{}\" (supported: .exr, .png)", extension));
-    auto encoded = exr ? encode_exr(file, image) : encode_png(file, image);
+    auto encoded = exr ? encode_exr_bytes(file, image) : encode_png_bytes(file, image);
     if (!encoded) return encoded.error();
     const auto& bytes = encoded.value();
     return write_file_atomically(

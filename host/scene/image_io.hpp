@@ -1,6 +1,8 @@
 #pragma once
-// Image files in and out, through OpenImageIO. Colour inside the host is linear light,
-// premultiplied RGBA float; masks are data (docs/design.md, "Conventions").
+// Image files in and out: PNG and EXR by libpng and OpenEXR in the host (scene/png_file.hpp,
+// scene/exr_file.hpp), any other format read by OpenImageIO in a module loaded when one is met
+// (scene/image_codec.hpp). Colour inside the host is linear light, premultiplied RGBA float;
+// masks are data (docs/design.md, "Conventions").
 
 #include <cstdint>
 #include <filesystem>

@@ -86,22 +86,46 @@ TEST(CliBadInput, ImageThatCannotBeDecoded) {
     EXPECT_FALSE(fs::exists(dir / "out.png"));
 }
 
-// The image formats are a module the host library loads from its own folder
-// (host/scene/image_codec.hpp). A host library copied without it reads no image: the scene's
-// first image is refused in one line naming the module that is missing, nothing is written.
-TEST(CliBadInput, AHostLibraryWithoutItsImageCodecSaysWhichFileIsMissing) {
+// A 24-bit BMP (OpenImageIO reads it; the host itself reads only PNG and EXR): `size` x `size`
+// pixels of one grey, rows bottom up, each padded to four bytes.
+std::string bmp_file(uint32_t size, uint8_t grey) {
+    const uint32_t row = (size * 3 + 3) / 4 * 4, pixels = row * size;
+    auto le32 = [](uint32_t v) {
+        return std::string{char(v), char(v >> 8), char(v >> 16), char(v >> 24)};
+    };
+    std::string bytes = "BM" + le32(54 + pixels) + le32(0) + le32(54);
+    bytes += le32(40) + le32(size) + le32(size) + std::string("\x01\0\x18\0", 4) + le32(0) +
+             le32(pixels) + le32(2835) + le32(2835) + le32(0) + le32(0);
+    for (uint32_t y = 0; y < size; ++y)
+        bytes += std::string(size * 3, char(grey)) + std::string(row - size * 3, '\0');
+    return bytes;
+}
+
+// Formats other than PNG and EXR are a module the host library loads from its own folder
+// (host/scene/image_codec.hpp). A host library copied without it still renders a scene of EXR
+// tiles to PNG; a BMP tile is refused in one line naming the module that is missing.
+TEST(CliBadInput, AHostLibraryWithoutItsImageCodecReadsOnlyPngAndExr) {
     const fs::path dir = write_scene();
     const fs::path alone = dir / "host-alone";
     fs::create_directories(alone);
     fs::copy_file(ACETATE_HOST_LIBRARY, alone / fs::path(ACETATE_HOST_LIBRARY).filename());
+    test::write_text(dir / "c.bmp", bmp_file(8, 128));
+    SceneText bmp;
+    bmp.upper_tile = R"({ "image": "c.bmp", "rect": [8, 4, 16, 16] })";
+    test::write_text(dir / "bmp.json", bmp.text());
     // Searched before the program's run path, so this copy is the host library it loads.
     ASSERT_EQ(::setenv("LD_LIBRARY_PATH", alone.c_str(), 1), 0);
-    const CliRun run = run_acetate(dir, "render scene.json -o out.png");
+    const CliRun exr = run_acetate(dir, "render scene.json -o out.png");
+    const CliRun other = run_acetate(dir, "render bmp.json -o bmp.png");
     ::unsetenv("LD_LIBRARY_PATH");
-    expect_refused(
-        run, {"scene.json", "floors[0].tiles[0].image",
-              "cannot load the image codec " + (alone / "libacetate-image-codec.so").string()});
-    EXPECT_FALSE(fs::exists(dir / "out.png"));
+    expect_success(exr);
+    EXPECT_TRUE(fs::exists(dir / "out.png"));
+    expect_refused(other, {"bmp.json", "floors[1].tiles[0].image", "c.bmp",
+                           "cannot load the image codec " +
+                               (alone / "libacetate-image-codec.so").string()});
+    EXPECT_FALSE(fs::exists(dir / "bmp.png"));
+    // With the module beside the host library, as built, the BMP tile renders.
+    expect_success(run_acetate(dir, "render bmp.json -o bmp.png"));
 }
 
 TEST(CliBadInput, CanvasLargerThanTheDeviceAllows) {

@@ -10,7 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "scene/image_codec.hpp"
+#include "scene/exr_file.hpp"
+#include "scene/png_file.hpp"
 
 namespace acetate::test {
 
@@ -46,19 +47,12 @@ std::filesystem::path write_encoded(const std::filesystem::path& file, bool ok,
     return file;
 }
 
-const ImageCodec& codec() {
-    auto loaded = image_codec();
-    if (!loaded) throw std::runtime_error(loaded.error().message);
-    return *loaded.value();
-}
-
 }  // namespace
 
 std::filesystem::path write_exr(const std::filesystem::path& file, const ImageRGBA& image) {
     std::vector<unsigned char> bytes;
     std::string why;
-    const bool ok = codec().encode_exr(file.string(), image.width, image.height,
-                                       image.pixels.data(), true, bytes, why);
+    const bool ok = encode_exr(image.width, image.height, image.pixels.data(), true, bytes, why);
     return write_encoded(file, ok, bytes, why);
 }
 
@@ -66,7 +60,7 @@ std::filesystem::path write_png8(const std::filesystem::path& file, uint32_t wid
                                  const std::vector<uint8_t>& rgba8) {
     std::vector<unsigned char> bytes;
     std::string why;
-    const bool ok = codec().encode_png(file.string(), width, height, rgba8.data(), bytes, why);
+    const bool ok = encode_png(width, height, rgba8.data(), bytes, why);
     return write_encoded(file, ok, bytes, why);
 }
 
