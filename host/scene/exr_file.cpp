@@ -4,6 +4,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfIO.h>
+#include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfRgba.h>
 #include <ImfRgbaFile.h>
@@ -35,7 +36,9 @@ class MemoryInput final : public Imf::IStream {
         return position_ < size_;
     }
     uint64_t tellg() override { return position_; }
-    void seekg(uint64_t position) override { position_ = size_t(std::min<uint64_t>(position, size_)); }
+    void seekg(uint64_t position) override {
+        position_ = size_t(std::min<uint64_t>(position, size_));
+    }
 
   private:
     void check(int count) const {
@@ -66,36 +69,55 @@ class MemoryOutput final : public Imf::OStream {
 
 constexpr int kNoThreads = 0;  // decode and encode on the calling thread only
 
+// One float slice of a four-float-per-pixel buffer whose first pixel is the data window's
+// corner (OpenEXR addresses slices from the file's origin); a channel the file lacks reads as
+// `fill`.
+Imf::Slice float_slice(float* pixels, const Imath::Box2i& window, int64_t width, int channel,
+                       double fill) {
+    const size_t x_stride = 4 * sizeof(float), y_stride = size_t(width) * x_stride;
+    char* origin = reinterpret_cast<char*>(pixels + channel) -
+                   int64_t(window.min.x) * int64_t(x_stride) -
+                   int64_t(window.min.y) * int64_t(y_stride);
+    return Imf::Slice(Imf::FLOAT, origin, x_stride, y_stride, 1, 1, fill);
+}
+
 bool read_exr(const void* bytes, size_t size, const DecodeLimits& limits, DecodedFile& out,
               std::string& error) {
     MemoryInput input(static_cast<const char*>(bytes), size);
-    Imf::RgbaInputFile file(input, kNoThreads);
-    if ((file.channels() & (Imf::WRITE_RGBA | Imf::WRITE_Y)) == 0) {
+    Imf::InputFile file(input, kNoThreads);
+    const Imf::ChannelList& channels = file.header().channels();
+    auto has = [&](const char* name) { return channels.findChannel(name) != nullptr; };
+    const bool rgb = has("R") || has("G") || has("B");
+    if (!rgb && !has("Y") && !has("A")) {
         error = "no R, G, B, A or Y channel to read";
         return false;
     }
-    const Imath::Box2i window = file.dataWindow();
+    const Imath::Box2i window = file.header().dataWindow();
     const int64_t width = int64_t(window.max.x) - window.min.x + 1;
     const int64_t height = int64_t(window.max.y) - window.min.y + 1;
     if (!within_decode_limits(width, height, limits, error)) return false;
-    std::vector<Imf::Rgba> pixels(size_t(width * height));
-    // The buffer's origin is the data window's corner, as OpenEXR addresses it.
-    file.setFrameBuffer(pixels.data() - window.min.x - int64_t(window.min.y) * width, 1,
-                        size_t(width));
+    // Read as float whatever the file stores (half, float or uint): a float file comes back
+    // bit for bit. Luminance fills R, and G and B copy it.
+    out.values.assign(size_t(width * height) * 4, 0.0f);
+    float* pixels = out.values.data();
+    Imf::FrameBuffer frame;
+    frame.insert(rgb || !has("Y") ? "R" : "Y", float_slice(pixels, window, width, 0, 0.0));
+    if (rgb) {
+        frame.insert("G", float_slice(pixels, window, width, 1, 0.0));
+        frame.insert("B", float_slice(pixels, window, width, 2, 0.0));
+    }
+    frame.insert("A", float_slice(pixels, window, width, 3, 1.0));
+    file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
+    if (!rgb)
+        for (size_t i = 0; i < size_t(width * height); ++i)
+            pixels[i * 4 + 1] = pixels[i * 4 + 2] = pixels[i * 4];
 
     out.width = uint32_t(width);
     out.height = uint32_t(height);
     out.channels = 4;
     out.integer_format = false;
     out.straight_alpha = false;
-    out.values.resize(pixels.size() * 4);
-    for (size_t i = 0; i < pixels.size(); ++i) {
-        out.values[i * 4 + 0] = float(pixels[i].r);
-        out.values[i * 4 + 1] = float(pixels[i].g);
-        out.values[i * 4 + 2] = float(pixels[i].b);
-        out.values[i * 4 + 3] = float(pixels[i].a);
-    }
     return true;
 }
 

@@ -46,8 +46,8 @@ inline bool within_decode_limits(int64_t width, int64_t height, const DecodeLimi
     if (width <= 0 || height <= 0)
         error = "image has no pixels";
     else if (width > limits.max_side || height > limits.max_side)
-        error = "image is " + size + ", larger than " + std::to_string(limits.max_side) +
-                " on a side";
+        error =
+            "image is " + size + ", larger than " + std::to_string(limits.max_side) + " on a side";
     else if (width * height > limits.max_pixels)
         error = "image is " + size + ", more than " + std::to_string(limits.max_pixels) +
                 " pixels (8192x8192)";

@@ -120,9 +120,9 @@ TEST(CliBadInput, AHostLibraryWithoutItsImageCodecReadsOnlyPngAndExr) {
     ::unsetenv("LD_LIBRARY_PATH");
     expect_success(exr);
     EXPECT_TRUE(fs::exists(dir / "out.png"));
-    expect_refused(other, {"bmp.json", "floors[1].tiles[0].image", "c.bmp",
-                           "cannot load the image codec " +
-                               (alone / "libacetate-image-codec.so").string()});
+    expect_refused(
+        other, {"bmp.json", "floors[1].tiles[0].image", "c.bmp",
+                "cannot load the image codec " + (alone / "libacetate-image-codec.so").string()});
     EXPECT_FALSE(fs::exists(dir / "bmp.png"));
     // With the module beside the host library, as built, the BMP tile renders.
     expect_success(run_acetate(dir, "render bmp.json -o bmp.png"));
